@@ -1,0 +1,367 @@
+// Evaluation of tensor-product splines: scattered points and tensor grids, with partial
+// derivatives of any order, polynomial and rational.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "derivative_table.h"
+#include "volspline/core/error.h"
+#include "volspline/spline/tensor_spline.h"
+
+namespace volspline {
+
+namespace detail {
+
+namespace {
+
+template <int D>
+std::unique_ptr<DerivativeTable<D>> build_derivative_table(int order) {
+  auto table = std::make_unique<DerivativeTable<D>>();
+  table->order = order;
+  table->alphas = derivative_multi_indices<D>(order);
+  int dense = 1;
+  for (int d = 0; d < D; ++d) dense *= order + 1;
+  table->position.assign(static_cast<std::size_t>(dense), -1);
+  for (std::size_t i = 0; i < table->alphas.size(); ++i)
+    table->position[static_cast<std::size_t>(table->dense_index(table->alphas[i]))] = static_cast<int>(i);
+  table->leibniz.resize(table->alphas.size());
+  for (std::size_t a = 0; a < table->alphas.size(); ++a) {
+    const auto& alpha = table->alphas[a];
+    for (std::size_t b = 1; b < table->alphas.size(); ++b) {
+      const auto& beta = table->alphas[b];
+      bool below = true;
+      double binomial = 1.0;
+      std::array<int, D> rest{};
+      for (int d = 0; d < D; ++d) {
+        const auto dd = static_cast<std::size_t>(d);
+        if (beta[dd] > alpha[dd]) below = false;
+        rest[dd] = alpha[dd] - beta[dd];
+        for (int i = 0; i < beta[dd]; ++i) binomial = binomial * (alpha[dd] - i) / (i + 1);
+      }
+      if (!below) continue;
+      table->leibniz[a].push_back({static_cast<int>(b),
+                                   table->position[static_cast<std::size_t>(table->dense_index(rest))], binomial});
+    }
+  }
+  return table;
+}
+
+}  // namespace
+
+template <int D>
+const DerivativeTable<D>& derivative_table(int order) {
+  // Orders used on hot paths are built once at first use; higher ones on demand.
+  static constexpr int kPrebuilt = 4;
+  static const auto prebuilt = [] {
+    std::array<std::unique_ptr<DerivativeTable<D>>, kPrebuilt + 1> t;
+    for (int n = 0; n <= kPrebuilt; ++n) t[static_cast<std::size_t>(n)] = build_derivative_table<D>(n);
+    return t;
+  }();
+  if (order <= kPrebuilt) return *prebuilt[static_cast<std::size_t>(order)];
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<DerivativeTable<D>>> tables;
+  std::lock_guard lock(mutex);
+  auto& slot = tables[order];
+  if (!slot) slot = build_derivative_table<D>(order);
+  return *slot;
+}
+
+template const DerivativeTable<1>& derivative_table<1>(int);
+template const DerivativeTable<2>& derivative_table<2>(int);
+template const DerivativeTable<3>& derivative_table<3>(int);
+template const DerivativeTable<4>& derivative_table<4>(int);
+
+}  // namespace detail
+
+namespace {
+
+constexpr int kMaxDegreeOnStack = 15;
+
+// One contraction step of a local block along one direction (sum factorisation):
+//   out[r][row * len + x] = sum_k basis[r][k] * in[k * kstride + row_offset[row] + x]
+// for the derivative orders r = 0..orders-1, reading the input once for all orders.
+inline void contract_stage(const double* in, std::ptrdiff_t kstride, const std::ptrdiff_t* row_offset, int rows,
+                           int len, const double* basis, int n, int orders, double* out) {
+  const int block = rows * len;
+  std::fill(out, out + static_cast<std::ptrdiff_t>(orders) * block, 0.0);
+  for (int k = 0; k < n; ++k) {
+    for (int row = 0; row < rows; ++row) {
+      const double* src = in + k * kstride + row_offset[row];
+      for (int r = 0; r < orders; ++r) {
+        const double b = basis[r * n + k];
+        double* dst = out + r * block + row * len;
+        for (int x = 0; x < len; ++x) dst[x] += b * src[x];
+      }
+    }
+  }
+}
+
+template <int D>
+struct LocalEvaluation {
+  const double* coefficients;
+  int C;
+  std::array<int, D> n;          // p_d + 1
+  std::array<std::ptrdiff_t, D> stride;  // global stride of direction d
+  std::array<const double*, D> basis;    // (order+1) x n_d derivative rows per direction
+  int order;
+  const detail::DerivativeTable<D>* table;
+  double* results;  // table size x C
+  double* scratch;
+
+  // Contracts direction d of `in` (global block when d == D-1, else contiguous) and recurses.
+  void descend(int d, const double* in, std::ptrdiff_t kstride, const std::ptrdiff_t* row_offset, int rows, int len,
+               int used, std::array<int, D>& alpha, double* buffer) {
+    const auto dd = static_cast<std::size_t>(d);
+    const int orders = std::min(order - used, n[dd] - 1) + 1;
+    const int block = rows * len;
+    contract_stage(in, kstride, row_offset, rows, len, basis[dd], n[dd], orders, buffer);
+    for (int r = 0; r < orders; ++r) {
+      alpha[dd] = r;
+      const double* part = buffer + r * block;
+      if (d == 0) {
+        const int pos = table->position[static_cast<std::size_t>(table->dense_index(alpha))];
+        std::memcpy(results + pos * C, part, sizeof(double) * static_cast<std::size_t>(C));
+      } else {
+        // The contracted block has shape n_0 x ... x n_{d-1} x C, contiguous.
+        const int next_len = block / n[dd - 1];
+        const std::ptrdiff_t zero = 0;
+        descend(d - 1, part, next_len, &zero, 1, next_len, used + r, alpha, buffer + orders * block);
+      }
+    }
+    alpha[dd] = 0;
+  }
+};
+
+thread_local std::vector<double> tl_scratch;
+
+}  // namespace
+
+template <int D>
+void TensorSpline<D>::evaluate(const Parameter& t, double* out) const {
+  evaluate_derivatives(t, 0, out);
+}
+
+template <int D>
+Eigen::VectorXd TensorSpline<D>::evaluate(const Parameter& t) const {
+  Eigen::VectorXd x(dimension_);
+  evaluate(t, x.data());
+  return x;
+}
+
+template <int D>
+std::vector<double> TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order) const {
+  const auto& table = detail::derivative_table<D>(order);
+  std::vector<double> out(table.alphas.size() * static_cast<std::size_t>(dimension_));
+  evaluate_derivatives(t, order, out.data());
+  return out;
+}
+
+template <int D>
+void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double* out) const {
+  if (order < 0) throw InvalidInput("derivative order must be >= 0");
+  check_in_domain(t);
+  const auto& table = detail::derivative_table<D>(order);
+  const int C = coefficient_size();
+  const bool rational = is_rational();
+
+  // Basis functions (and derivatives) per direction; all on the stack for ordinary degrees.
+  std::array<int, D> n{}, first{};
+  std::array<std::ptrdiff_t, D> stride{};
+  std::size_t basis_size = 0, block = 1;
+  for (int d = 0; d < D; ++d) {
+    const auto dd = static_cast<std::size_t>(d);
+    n[dd] = knots_[dd].degree() + 1;
+    basis_size += static_cast<std::size_t>((order + 1) * n[dd]);
+    block *= static_cast<std::size_t>(n[dd]);
+    stride[dd] = d == 0 ? C : stride[dd - 1] * counts_[dd - 1];
+  }
+  const std::size_t n_alpha = table.alphas.size();
+  // scratch: basis | results (homogeneous) | contraction buffers (bounded by 2 * (order+1) * block * C)
+  const std::size_t need = basis_size + n_alpha * static_cast<std::size_t>(C) +
+                           2 * static_cast<std::size_t>(order + 1) * block * static_cast<std::size_t>(C) * D;
+  std::vector<double>& scratch = tl_scratch;
+  if (scratch.size() < need) scratch.resize(need);
+  double* basis_ptr = scratch.data();
+  std::array<const double*, D> basis{};
+  std::ptrdiff_t base = 0;
+  for (int d = 0; d < D; ++d) {
+    const auto dd = static_cast<std::size_t>(d);
+    const KnotVector& kv = knots_[dd];
+    const double x = t[dd];
+    const int span = kv.find_span(x);
+    first[dd] = span - kv.degree();
+    if (order == 0)
+      kv.basis(span, x, basis_ptr);
+    else
+      kv.basis_derivatives(span, x, order, basis_ptr);
+    basis[dd] = basis_ptr;
+    basis_ptr += (order + 1) * n[dd];
+    base += first[dd] * stride[dd];
+  }
+  double* results = basis_ptr;
+  double* buffers = results + n_alpha * static_cast<std::size_t>(C);
+  std::fill(results, results + n_alpha * static_cast<std::size_t>(C), 0.0);
+
+  // Row offsets of the block in global memory for the first stage (direction D-1): the rows
+  // run along direction 0 and are contiguous (n_0 * C numbers).
+  std::array<std::ptrdiff_t, 64> row_offset_stack{};
+  std::vector<std::ptrdiff_t> row_offset_heap;
+  int rows = 1;
+  for (int d = 1; d < D - 1; ++d) rows *= n[static_cast<std::size_t>(d)];
+  std::ptrdiff_t* row_offset = row_offset_stack.data();
+  if (rows > static_cast<int>(row_offset_stack.size())) {
+    row_offset_heap.resize(static_cast<std::size_t>(rows));
+    row_offset = row_offset_heap.data();
+  }
+  for (int row = 0; row < rows; ++row) {
+    std::ptrdiff_t off = 0;
+    int rest = row;
+    for (int d = 1; d < D - 1; ++d) {
+      const auto dd = static_cast<std::size_t>(d);
+      off += (rest % n[dd]) * stride[dd];
+      rest /= n[dd];
+    }
+    row_offset[row] = off;
+  }
+  const int len = D == 1 ? C : n[0] * C;
+
+  LocalEvaluation<D> local{homogeneous().data(), C, n, stride, basis, order, &table, results, buffers};
+  std::array<int, D> alpha{};
+  local.descend(D - 1, homogeneous().data() + base, stride[D - 1], row_offset, rows, len, 0, alpha, buffers);
+
+  const int k = dimension_;
+  if (!rational) {
+    std::memcpy(out, results, sizeof(double) * n_alpha * static_cast<std::size_t>(k));
+    return;
+  }
+  // Quotient rule for A / w by Leibniz: A_alpha = sum_{beta <= alpha} C(alpha, beta) w_beta R_{alpha-beta}.
+  const double w0 = results[k];
+  if (!(w0 > 0.0)) throw Error("internal: rational denominator vanished inside the domain");
+  for (std::size_t a = 0; a < n_alpha; ++a) {
+    double* r = out + a * static_cast<std::size_t>(k);
+    const double* h = results + a * static_cast<std::size_t>(C);
+    for (int c = 0; c < k; ++c) r[c] = h[c];
+    for (const auto& term : table.leibniz[a]) {
+      const double wb = term.binomial * results[term.beta * C + k];
+      const double* lower = out + term.alpha_minus * k;
+      for (int c = 0; c < k; ++c) r[c] -= wb * lower[c];
+    }
+    for (int c = 0; c < k; ++c) r[c] /= w0;
+  }
+}
+
+template <int D>
+std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>& samples,
+                                                   int order) const {
+  if (order < 0) throw InvalidInput("derivative order must be >= 0");
+  const auto& table = detail::derivative_table<D>(order);
+  const int C = coefficient_size();
+  const int k = dimension_;
+  std::size_t num_points = 1;
+  for (const auto& s : samples) num_points *= s.size();
+  const std::size_t n_alpha = table.alphas.size();
+  std::vector<double> out(n_alpha * num_points * static_cast<std::size_t>(k));
+  if (num_points == 0) return out;
+
+  // Basis functions of every sample, per direction: first index and (order+1) x (p+1) values.
+  std::array<std::vector<int>, D> first;
+  std::array<std::vector<double>, D> basis;
+  for (int d = 0; d < D; ++d) {
+    const auto dd = static_cast<std::size_t>(d);
+    const KnotVector& kv = knots_[dd];
+    const int n = kv.degree() + 1;
+    first[dd].resize(samples[dd].size());
+    basis[dd].resize(samples[dd].size() * static_cast<std::size_t>((order + 1) * n));
+    for (std::size_t s = 0; s < samples[dd].size(); ++s) {
+      Parameter probe{};
+      for (int e = 0; e < D; ++e) probe[static_cast<std::size_t>(e)] = knots_[static_cast<std::size_t>(e)].domain_min();
+      probe[dd] = samples[dd][s];
+      check_in_domain(probe);
+      const int span = kv.find_span(samples[dd][s]);
+      first[dd][s] = span - kv.degree();
+      kv.basis_derivatives(span, samples[dd][s], order, &basis[dd][s * static_cast<std::size_t>((order + 1) * n)]);
+    }
+  }
+
+  // Sum factorisation, one multi-index at a time: contract direction 0, then 1, ...; after
+  // direction d the tensor is [c][s_0]..[s_d][i_{d+1}]..[i_{D-1}], so every step is a long
+  // contiguous multiply-add over the already contracted block.
+  std::vector<double> homog(n_alpha * num_points * static_cast<std::size_t>(C));
+  std::vector<double> ping, pong;
+  for (std::size_t a = 0; a < n_alpha; ++a) {
+    const auto& alpha = table.alphas[a];
+    const double* in = homogeneous().data();
+    std::size_t inner = static_cast<std::size_t>(C);
+    for (int d = 0; d < D; ++d) {
+      const auto dd = static_cast<std::size_t>(d);
+      const int p1 = knots_[dd].degree() + 1;
+      const int r = alpha[dd];
+      const std::size_t ns = samples[dd].size();
+      const std::size_t nd = static_cast<std::size_t>(counts_[dd]);
+      std::size_t outer = 1;
+      for (int e = d + 1; e < D; ++e) outer *= static_cast<std::size_t>(counts_[static_cast<std::size_t>(e)]);
+      double* dst_base;
+      if (d == D - 1) {
+        dst_base = homog.data() + a * num_points * static_cast<std::size_t>(C);
+      } else {
+        std::vector<double>& target = (d % 2 == 0) ? ping : pong;
+        target.resize(inner * ns * outer);
+        dst_base = target.data();
+      }
+      std::fill(dst_base, dst_base + inner * ns * outer, 0.0);
+      for (std::size_t o = 0; o < outer; ++o) {
+        for (std::size_t s = 0; s < ns; ++s) {
+          double* dst = dst_base + inner * (s + ns * o);
+          const double* b = &basis[dd][s * static_cast<std::size_t>((order + 1) * p1) + static_cast<std::size_t>(r * p1)];
+          if (r >= p1) continue;  // derivative above the degree: zero
+          for (int kk = 0; kk < p1; ++kk) {
+            const double coef = b[kk];
+            const double* src = in + inner * (static_cast<std::size_t>(first[dd][s] + kk) + nd * o);
+            for (std::size_t x = 0; x < inner; ++x) dst[x] += coef * src[x];
+          }
+        }
+      }
+      in = dst_base;
+      inner *= ns;
+    }
+  }
+
+  if (!is_rational()) {
+    out.swap(homog);
+    return out;
+  }
+  for (std::size_t pt = 0; pt < num_points; ++pt) {
+    auto H = [&](std::size_t a) { return &homog[(a * num_points + pt) * static_cast<std::size_t>(C)]; };
+    auto R = [&](std::size_t a) { return &out[(a * num_points + pt) * static_cast<std::size_t>(k)]; };
+    const double w0 = H(0)[k];
+    if (!(w0 > 0.0)) throw Error("internal: rational denominator vanished inside the domain");
+    for (std::size_t a = 0; a < n_alpha; ++a) {
+      double* r = R(a);
+      const double* h = H(a);
+      for (int c = 0; c < k; ++c) r[c] = h[c];
+      for (const auto& term : table.leibniz[a]) {
+        const double wb = term.binomial * H(static_cast<std::size_t>(term.beta))[k];
+        const double* lower = R(static_cast<std::size_t>(term.alpha_minus));
+        for (int c = 0; c < k; ++c) r[c] -= wb * lower[c];
+      }
+      for (int c = 0; c < k; ++c) r[c] /= w0;
+    }
+  }
+  return out;
+}
+
+#define VOLSPLINE_INSTANTIATE_EVALUATION(D)                                                           \
+  template void TensorSpline<D>::evaluate(const Parameter&, double*) const;                          \
+  template Eigen::VectorXd TensorSpline<D>::evaluate(const Parameter&) const;                        \
+  template void TensorSpline<D>::evaluate_derivatives(const Parameter&, int, double*) const;         \
+  template std::vector<double> TensorSpline<D>::evaluate_derivatives(const Parameter&, int) const;   \
+  template std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>&, int) const;
+VOLSPLINE_INSTANTIATE_EVALUATION(1)
+VOLSPLINE_INSTANTIATE_EVALUATION(2)
+VOLSPLINE_INSTANTIATE_EVALUATION(3)
+VOLSPLINE_INSTANTIATE_EVALUATION(4)
+
+}  // namespace volspline

@@ -1,0 +1,235 @@
+#include "volspline/spline/tensor_spline.h"
+
+#include <cmath>
+#include <string>
+
+#include "volspline/core/error.h"
+#include "volspline/core/format.h"
+
+namespace volspline {
+
+namespace {
+
+std::string index_text(std::size_t i) { return "[" + std::to_string(i) + "]"; }
+
+}  // namespace
+
+template <int D>
+std::vector<std::array<int, D>> derivative_multi_indices(int order) {
+  std::vector<std::array<int, D>> result;
+  for (int total = 0; total <= order; ++total) {
+    // Descending lexicographic enumeration of compositions of `total` into D parts.
+    std::array<int, D> alpha{};
+    alpha[0] = total;
+    while (true) {
+      result.push_back(alpha);
+      // Next composition: move one unit from the last nonzero entry before the tail rightwards.
+      int j = D - 2;
+      while (j >= 0 && alpha[static_cast<std::size_t>(j)] == 0) --j;
+      if (j < 0) break;
+      const int tail = alpha[static_cast<std::size_t>(D - 1)];
+      alpha[static_cast<std::size_t>(D - 1)] = 0;
+      alpha[static_cast<std::size_t>(j)] -= 1;
+      alpha[static_cast<std::size_t>(j + 1)] = tail + 1;
+    }
+  }
+  return result;
+}
+
+template <int D>
+TensorSpline<D>::TensorSpline(std::array<KnotVector, D> knots, int dimension, std::vector<double> points,
+                              std::vector<double> weights)
+    : knots_(std::move(knots)), dimension_(dimension), points_(std::move(points)), weights_(std::move(weights)) {
+  set_counts();
+  const std::size_t n = static_cast<std::size_t>(total_);
+  const std::size_t k = static_cast<std::size_t>(dimension_);
+  if (points_.size() != n * k) {
+    std::string shape;
+    for (int d = 0; d < D; ++d) shape += (d ? " x " : "") + std::to_string(counts_[static_cast<std::size_t>(d)]);
+    throw InvalidInput("expected " + std::to_string(n) + " control points (" + shape +
+                           " from the degrees and knots), got " + std::to_string(points_.size() / std::max<std::size_t>(k, 1)),
+                       "control_points");
+  }
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    if (!std::isfinite(points_[i])) {
+      throw InvalidInput("expected a finite number, got " + format_double(points_[i]),
+                         "control_points" + index_text(i / k) + index_text(i % k));
+    }
+  }
+  if (!weights_.empty()) {
+    if (weights_.size() != n) {
+      throw InvalidInput("expected one weight per control point (" + std::to_string(n) + "), got " +
+                             std::to_string(weights_.size()),
+                         "weights");
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!std::isfinite(weights_[i]) || weights_[i] < 0.0) {
+        throw InvalidInput("expected a finite weight >= 0, got " + format_double(weights_[i]), "weights" + index_text(i));
+      }
+    }
+    rational_coefficients_.resize(n * (k + 1));
+    for (std::size_t i = 0; i < n; ++i) {
+      const double w = weights_[i];
+      double* h = &rational_coefficients_[i * (k + 1)];
+      // A weight-0 point is a direction and enters the numerator of eq. 5 unscaled (Lasser).
+      for (std::size_t c = 0; c < k; ++c) h[c] = w == 0.0 ? points_[i * k + c] : w * points_[i * k + c];
+      h[k] = w;
+    }
+    validate_weights();
+  }
+}
+
+template <int D>
+TensorSpline<D>::TensorSpline(FromHomogeneous, std::array<KnotVector, D> knots, int dimension, bool rational,
+                              std::vector<double> coefficients)
+    : knots_(std::move(knots)), dimension_(dimension) {
+  set_counts();
+  const std::size_t n = static_cast<std::size_t>(total_);
+  const std::size_t k = static_cast<std::size_t>(dimension_);
+  const std::size_t c_size = k + (rational ? 1 : 0);
+  if (coefficients.size() != n * c_size) {
+    throw InvalidInput("expected " + std::to_string(n * c_size) + " homogeneous coefficients, got " +
+                       std::to_string(coefficients.size()));
+  }
+  for (std::size_t i = 0; i < coefficients.size(); ++i) {
+    if (!std::isfinite(coefficients[i])) {
+      throw InvalidInput("expected a finite coefficient, got " + format_double(coefficients[i]),
+                         "coefficients" + index_text(i));
+    }
+  }
+  if (!rational) {
+    points_ = std::move(coefficients);
+    return;
+  }
+  points_.resize(n * k);
+  weights_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* h = &coefficients[i * c_size];
+    const double w = h[k];
+    if (w < 0.0) throw InvalidInput("a homogeneous weight is negative: " + format_double(w), "weights" + index_text(i));
+    weights_[i] = w;
+    for (std::size_t c = 0; c < k; ++c) points_[i * k + c] = w == 0.0 ? h[c] : h[c] / w;
+  }
+  rational_coefficients_ = std::move(coefficients);
+  validate_weights();
+}
+
+template <int D>
+TensorSpline<D> TensorSpline<D>::from_homogeneous(std::array<KnotVector, D> knots, int dimension, bool rational,
+                                                  std::vector<double> coefficients) {
+  return TensorSpline(FromHomogeneous{}, std::move(knots), dimension, rational, std::move(coefficients));
+}
+
+template <int D>
+void TensorSpline<D>::set_counts() {
+  if (dimension_ < 1) throw InvalidInput("control points need at least one coordinate");
+  total_ = 1;
+  for (int d = 0; d < D; ++d) {
+    counts_[static_cast<std::size_t>(d)] = knots_[static_cast<std::size_t>(d)].num_basis();
+    total_ *= counts_[static_cast<std::size_t>(d)];
+  }
+}
+
+template <int D>
+void TensorSpline<D>::validate_weights() const {
+  // With weights >= 0 the denominator of Lasser's eq. 5 vanishes at t exactly when every control
+  // point whose basis function is nonzero at t has weight 0. The sets of nonzero basis functions
+  // are smallest at knot values (inside a span all p+1 are positive), so checking every
+  // combination of breakpoints decides the question for the whole domain.
+  std::array<std::vector<std::vector<int>>, D> support;
+  std::array<std::vector<double>, D> where;
+  for (int d = 0; d < D; ++d) {
+    const KnotVector& kv = knots_[static_cast<std::size_t>(d)];
+    const int p = kv.degree();
+    std::vector<double> basis(static_cast<std::size_t>(p + 1));
+    for (double t : kv.breakpoints()) {
+      const int span = kv.find_span(t);
+      kv.basis(span, t, basis.data());
+      std::vector<int> nonzero;
+      for (int j = 0; j <= p; ++j)
+        if (basis[static_cast<std::size_t>(j)] != 0.0) nonzero.push_back(span - p + j);
+      support[static_cast<std::size_t>(d)].push_back(std::move(nonzero));
+      where[static_cast<std::size_t>(d)].push_back(t);
+    }
+  }
+  Index combo{};
+  while (true) {
+    // Any positive weight among the product of the per-direction nonzero sets?
+    bool positive = false;
+    Index ii{};
+    std::array<std::size_t, D> pos{};
+    while (!positive) {
+      for (int d = 0; d < D; ++d)
+        ii[static_cast<std::size_t>(d)] =
+            support[static_cast<std::size_t>(d)][static_cast<std::size_t>(combo[static_cast<std::size_t>(d)])][pos[static_cast<std::size_t>(d)]];
+      if (weights_[static_cast<std::size_t>(linear_index(ii))] > 0.0) positive = true;
+      int d = 0;
+      for (; d < D; ++d) {
+        auto& set = support[static_cast<std::size_t>(d)][static_cast<std::size_t>(combo[static_cast<std::size_t>(d)])];
+        if (++pos[static_cast<std::size_t>(d)] < set.size()) break;
+        pos[static_cast<std::size_t>(d)] = 0;
+      }
+      if (d == D) break;
+    }
+    if (!positive) {
+      std::string at;
+      for (int d = 0; d < D; ++d)
+        at += (d ? ", " : "") + format_double(where[static_cast<std::size_t>(d)][static_cast<std::size_t>(combo[static_cast<std::size_t>(d)])]);
+      throw InvalidInput("the weights of all control points that influence the parameter (" + at +
+                             ") are 0, so the rational spline is undefined there (Lasser 1994, eq. 5 needs a "
+                             "nonzero denominator)",
+                         "weights");
+    }
+    int d = 0;
+    for (; d < D; ++d) {
+      if (++combo[static_cast<std::size_t>(d)] < static_cast<int>(support[static_cast<std::size_t>(d)].size())) break;
+      combo[static_cast<std::size_t>(d)] = 0;
+    }
+    if (d == D) break;
+  }
+}
+
+template <int D>
+typename TensorSpline<D>::Index TensorSpline<D>::degrees() const {
+  Index p{};
+  for (int d = 0; d < D; ++d) p[static_cast<std::size_t>(d)] = knots_[static_cast<std::size_t>(d)].degree();
+  return p;
+}
+
+template <int D>
+int TensorSpline<D>::linear_index(const Index& i) const {
+  int index = 0;
+  for (int d = D - 1; d >= 0; --d) index = index * counts_[static_cast<std::size_t>(d)] + i[static_cast<std::size_t>(d)];
+  return index;
+}
+
+template <int D>
+bool TensorSpline<D>::contains(const Parameter& t) const {
+  for (int d = 0; d < D; ++d)
+    if (!knots_[static_cast<std::size_t>(d)].contains(t[static_cast<std::size_t>(d)])) return false;
+  return true;
+}
+
+template <int D>
+void TensorSpline<D>::check_in_domain(const Parameter& t) const {
+  static const char* names[] = {"u", "v", "w", "s"};
+  for (int d = 0; d < D; ++d) {
+    const KnotVector& kv = knots_[static_cast<std::size_t>(d)];
+    const double x = t[static_cast<std::size_t>(d)];
+    if (!kv.contains(x)) {
+      throw InvalidInput(std::string("parameter ") + names[d] + " = " + format_double(x) + " is outside the domain [" +
+                         format_double(kv.domain_min()) + ", " + format_double(kv.domain_max()) + "]");
+    }
+  }
+}
+
+template std::vector<std::array<int, 1>> derivative_multi_indices<1>(int);
+template std::vector<std::array<int, 2>> derivative_multi_indices<2>(int);
+template std::vector<std::array<int, 3>> derivative_multi_indices<3>(int);
+template std::vector<std::array<int, 4>> derivative_multi_indices<4>(int);
+template class TensorSpline<1>;
+template class TensorSpline<2>;
+template class TensorSpline<3>;
+template class TensorSpline<4>;
+
+}  // namespace volspline
