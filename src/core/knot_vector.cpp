@@ -106,6 +106,47 @@ void KnotVector::basis(int span, double t, double* N) const {
   }
 }
 
+void KnotVector::basis_first_derivatives(int span, double t, double* values) const {
+  // The last step of the Cox-de Boor triangle divides each degree p-1 function by its support
+  // length, N_{a,p-1} / (t_{a+p} - t_a); the derivative of a degree p function is p times the
+  // difference of two such quotients (Piegl & Tiller eq. 2.7), so both come out of one pass.
+  const int p = degree_;
+  double* N = values;
+  double* dN = values + p + 1;
+  if (p == 0) {
+    N[0] = 1.0;
+    dN[0] = 0.0;
+    return;
+  }
+  double left[32], right[32];
+  std::vector<double> heap;
+  double* l = left;
+  double* r = right;
+  if (p >= 32) {
+    heap.resize(2 * static_cast<std::size_t>(p + 1));
+    l = heap.data();
+    r = heap.data() + p + 1;
+  }
+  const double* k = knots_.data();
+  N[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    l[j] = t - k[span + 1 - j];
+    r[j] = k[span + j] - t;
+    double saved = 0.0, previous_quotient = 0.0;
+    for (int i = 0; i < j; ++i) {
+      const double quotient = N[i] / (r[i + 1] + l[j - i]);
+      N[i] = saved + r[i + 1] * quotient;
+      saved = l[j - i] * quotient;
+      if (j == p) {
+        dN[i] = p * (previous_quotient - quotient);
+        previous_quotient = quotient;
+      }
+    }
+    N[j] = saved;
+    if (j == p) dN[p] = p * previous_quotient;
+  }
+}
+
 void KnotVector::basis_derivatives(int span, double t, int order, double* values) const {
   // Piegl & Tiller A2.3: the triangle of basis functions of all degrees, then derivatives from
   // differences of lower-degree functions. Scratch lives on the stack for degrees below 16.

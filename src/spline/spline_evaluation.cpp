@@ -136,6 +136,83 @@ struct LocalEvaluation {
 };
 
 thread_local std::vector<double> tl_scratch;
+thread_local std::vector<double> tl_grid_scratch[3];
+
+// Sum factorisation of one 3-variate block with compile-time sizes: N = p + 1 in every
+// direction, C numbers per coefficient. Contracting w first leaves rows of N*C contiguous
+// numbers, which the compiler unrolls and vectorises. Computes the value and, for order 1, the
+// three first partials in derivative_multi_indices order.
+template <int N, int C, int Order>
+void contract_volume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff_t sw, const double* Bu, const double* Bv,
+                           const double* Bw, double* results) {
+  constexpr int L = N * C;
+  double w0[N][L], w1[N][L];
+  for (int j = 0; j < N; ++j) {
+    const double* row = G + j * sv;
+    for (int x = 0; x < L; ++x) {
+      double a = 0.0, b = 0.0;
+      for (int k = 0; k < N; ++k) {
+        const double g = row[k * sw + x];
+        a += Bw[k] * g;
+        if constexpr (Order) b += Bw[N + k] * g;
+      }
+      w0[j][x] = a;
+      w1[j][x] = b;
+    }
+  }
+  double v00[L], v10[L], v01[L];
+  for (int x = 0; x < L; ++x) {
+    double a = 0.0, b = 0.0, c = 0.0;
+    for (int j = 0; j < N; ++j) {
+      a += Bv[j] * w0[j][x];
+      if constexpr (Order) {
+        b += Bv[N + j] * w0[j][x];
+        c += Bv[j] * w1[j][x];
+      }
+    }
+    v00[x] = a;
+    v10[x] = b;  // d/dv
+    v01[x] = c;  // d/dw
+  }
+  for (int c = 0; c < C; ++c) {
+    double value = 0.0, du = 0.0, dv = 0.0, dw = 0.0;
+    for (int i = 0; i < N; ++i) {
+      value += Bu[i] * v00[i * C + c];
+      if constexpr (Order) {
+        du += Bu[N + i] * v00[i * C + c];
+        dv += Bu[i] * v10[i * C + c];
+        dw += Bu[i] * v01[i * C + c];
+      }
+    }
+    results[c] = value;
+    if constexpr (Order) {
+      results[C + c] = du;
+      results[2 * C + c] = dv;
+      results[3 * C + c] = dw;
+    }
+  }
+}
+
+using FixedKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, const double*, const double*, const double*,
+                             double*);
+
+template <int Order>
+FixedKernel fixed_volume_kernel_of_order(int n, int c) {
+  if (c == 3) {
+    if (n == 2) return contract_volume_fixed<2, 3, Order>;
+    if (n == 3) return contract_volume_fixed<3, 3, Order>;
+    if (n == 4) return contract_volume_fixed<4, 3, Order>;
+  } else if (c == 4) {
+    if (n == 2) return contract_volume_fixed<2, 4, Order>;
+    if (n == 3) return contract_volume_fixed<3, 4, Order>;
+    if (n == 4) return contract_volume_fixed<4, 4, Order>;
+  }
+  return nullptr;
+}
+
+FixedKernel fixed_volume_kernel(int n, int c, int order) {
+  return order == 0 ? fixed_volume_kernel_of_order<0>(n, c) : fixed_volume_kernel_of_order<1>(n, c);
+}
 
 }  // namespace
 
@@ -195,6 +272,8 @@ void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double
     first[dd] = span - kv.degree();
     if (order == 0)
       kv.basis(span, x, basis_ptr);
+    else if (order == 1)
+      kv.basis_first_derivatives(span, x, basis_ptr);
     else
       kv.basis_derivatives(span, x, order, basis_ptr);
     basis[dd] = basis_ptr;
@@ -205,32 +284,40 @@ void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double
   double* buffers = results + n_alpha * static_cast<std::size_t>(C);
   std::fill(results, results + n_alpha * static_cast<std::size_t>(C), 0.0);
 
-  // Row offsets of the block in global memory for the first stage (direction D-1): the rows
-  // run along direction 0 and are contiguous (n_0 * C numbers).
-  std::array<std::ptrdiff_t, 64> row_offset_stack{};
-  std::vector<std::ptrdiff_t> row_offset_heap;
-  int rows = 1;
-  for (int d = 1; d < D - 1; ++d) rows *= n[static_cast<std::size_t>(d)];
-  std::ptrdiff_t* row_offset = row_offset_stack.data();
-  if (rows > static_cast<int>(row_offset_stack.size())) {
-    row_offset_heap.resize(static_cast<std::size_t>(rows));
-    row_offset = row_offset_heap.data();
+  FixedKernel fixed = nullptr;
+  if constexpr (D == 3) {
+    if (order <= 1 && n[0] == n[1] && n[1] == n[2]) fixed = fixed_volume_kernel(n[0], C, order);
   }
-  for (int row = 0; row < rows; ++row) {
-    std::ptrdiff_t off = 0;
-    int rest = row;
-    for (int d = 1; d < D - 1; ++d) {
-      const auto dd = static_cast<std::size_t>(d);
-      off += (rest % n[dd]) * stride[dd];
-      rest /= n[dd];
+  if (fixed) {
+    fixed(homogeneous().data() + base, stride[1], stride[2], basis[0], basis[1], basis[2], results);
+  } else {
+    // Row offsets of the block in global memory for the first stage (direction D-1): the rows
+    // run along direction 0 and are contiguous (n_0 * C numbers).
+    std::array<std::ptrdiff_t, 64> row_offset_stack{};
+    std::vector<std::ptrdiff_t> row_offset_heap;
+    int rows = 1;
+    for (int d = 1; d < D - 1; ++d) rows *= n[static_cast<std::size_t>(d)];
+    std::ptrdiff_t* row_offset = row_offset_stack.data();
+    if (rows > static_cast<int>(row_offset_stack.size())) {
+      row_offset_heap.resize(static_cast<std::size_t>(rows));
+      row_offset = row_offset_heap.data();
     }
-    row_offset[row] = off;
-  }
-  const int len = D == 1 ? C : n[0] * C;
+    for (int row = 0; row < rows; ++row) {
+      std::ptrdiff_t off = 0;
+      int rest = row;
+      for (int d = 1; d < D - 1; ++d) {
+        const auto dd = static_cast<std::size_t>(d);
+        off += (rest % n[dd]) * stride[dd];
+        rest /= n[dd];
+      }
+      row_offset[row] = off;
+    }
+    const int len = D == 1 ? C : n[0] * C;
 
-  LocalEvaluation<D> local{homogeneous().data(), C, n, stride, basis, order, &table, results, buffers};
-  std::array<int, D> alpha{};
-  local.descend(D - 1, homogeneous().data() + base, stride[D - 1], row_offset, rows, len, 0, alpha, buffers);
+    LocalEvaluation<D> local{homogeneous().data(), C, n, stride, basis, order, &table, results, buffers};
+    std::array<int, D> alpha{};
+    local.descend(D - 1, homogeneous().data() + base, stride[D - 1], row_offset, rows, len, 0, alpha, buffers);
+  }
 
   const int k = dimension_;
   if (!rational) {
@@ -254,8 +341,17 @@ void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double
 }
 
 template <int D>
-std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>& samples,
-                                                   int order) const {
+std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>& samples, int order) const {
+  std::size_t num_points = 1;
+  for (const auto& s : samples) num_points *= s.size();
+  std::vector<double> out(detail::derivative_table<D>(std::max(order, 0)).alphas.size() * num_points *
+                          static_cast<std::size_t>(dimension_));
+  evaluate_grid(samples, order, out.data());
+  return out;
+}
+
+template <int D>
+void TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>& samples, int order, double* out) const {
   if (order < 0) throw InvalidInput("derivative order must be >= 0");
   const auto& table = detail::derivative_table<D>(order);
   const int C = coefficient_size();
@@ -263,8 +359,7 @@ std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<
   std::size_t num_points = 1;
   for (const auto& s : samples) num_points *= s.size();
   const std::size_t n_alpha = table.alphas.size();
-  std::vector<double> out(n_alpha * num_points * static_cast<std::size_t>(k));
-  if (num_points == 0) return out;
+  if (num_points == 0) return;
 
   // Basis functions of every sample, per direction: first index and (order+1) x (p+1) values.
   std::array<std::vector<int>, D> first;
@@ -288,9 +383,11 @@ std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<
 
   // Sum factorisation, one multi-index at a time: contract direction 0, then 1, ...; after
   // direction d the tensor is [c][s_0]..[s_d][i_{d+1}]..[i_{D-1}], so every step is a long
-  // contiguous multiply-add over the already contracted block.
-  std::vector<double> homog(n_alpha * num_points * static_cast<std::size_t>(C));
-  std::vector<double> ping, pong;
+  // contiguous multiply-add over the already contracted block. Scratch is reused between calls
+  // (fresh pages cost more than the arithmetic).
+  const bool rational = is_rational();
+  std::vector<double>& homog = tl_grid_scratch[2];
+  if (rational) homog.resize(n_alpha * num_points * static_cast<std::size_t>(C));
   for (std::size_t a = 0; a < n_alpha; ++a) {
     const auto& alpha = table.alphas[a];
     const double* in = homogeneous().data();
@@ -305,21 +402,25 @@ std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<
       for (int e = d + 1; e < D; ++e) outer *= static_cast<std::size_t>(counts_[static_cast<std::size_t>(e)]);
       double* dst_base;
       if (d == D - 1) {
-        dst_base = homog.data() + a * num_points * static_cast<std::size_t>(C);
+        dst_base = (rational ? homog.data() : out) + a * num_points * static_cast<std::size_t>(C);
       } else {
-        std::vector<double>& target = (d % 2 == 0) ? ping : pong;
-        target.resize(inner * ns * outer);
+        std::vector<double>& target = tl_grid_scratch[d % 2];
+        if (target.size() < inner * ns * outer) target.resize(inner * ns * outer);
         dst_base = target.data();
       }
-      std::fill(dst_base, dst_base + inner * ns * outer, 0.0);
       for (std::size_t o = 0; o < outer; ++o) {
         for (std::size_t s = 0; s < ns; ++s) {
           double* dst = dst_base + inner * (s + ns * o);
+          if (r >= p1) {  // derivative above the degree: zero
+            std::fill(dst, dst + inner, 0.0);
+            continue;
+          }
           const double* b = &basis[dd][s * static_cast<std::size_t>((order + 1) * p1) + static_cast<std::size_t>(r * p1)];
-          if (r >= p1) continue;  // derivative above the degree: zero
-          for (int kk = 0; kk < p1; ++kk) {
+          const double* src0 = in + inner * (static_cast<std::size_t>(first[dd][s]) + nd * o);
+          for (std::size_t x = 0; x < inner; ++x) dst[x] = b[0] * src0[x];
+          for (int kk = 1; kk < p1; ++kk) {
             const double coef = b[kk];
-            const double* src = in + inner * (static_cast<std::size_t>(first[dd][s] + kk) + nd * o);
+            const double* src = src0 + inner * static_cast<std::size_t>(kk);
             for (std::size_t x = 0; x < inner; ++x) dst[x] += coef * src[x];
           }
         }
@@ -328,11 +429,8 @@ std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<
       inner *= ns;
     }
   }
+  if (!rational) return;
 
-  if (!is_rational()) {
-    out.swap(homog);
-    return out;
-  }
   for (std::size_t pt = 0; pt < num_points; ++pt) {
     auto H = [&](std::size_t a) { return &homog[(a * num_points + pt) * static_cast<std::size_t>(C)]; };
     auto R = [&](std::size_t a) { return &out[(a * num_points + pt) * static_cast<std::size_t>(k)]; };
@@ -350,7 +448,6 @@ std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<
       for (int c = 0; c < k; ++c) r[c] /= w0;
     }
   }
-  return out;
 }
 
 #define VOLSPLINE_INSTANTIATE_EVALUATION(D)                                                           \
@@ -358,7 +455,8 @@ std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<
   template Eigen::VectorXd TensorSpline<D>::evaluate(const Parameter&) const;                        \
   template void TensorSpline<D>::evaluate_derivatives(const Parameter&, int, double*) const;         \
   template std::vector<double> TensorSpline<D>::evaluate_derivatives(const Parameter&, int) const;   \
-  template std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>&, int) const;
+  template std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>&, int) const; \
+  template void TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>&, int, double*) const;
 VOLSPLINE_INSTANTIATE_EVALUATION(1)
 VOLSPLINE_INSTANTIATE_EVALUATION(2)
 VOLSPLINE_INSTANTIATE_EVALUATION(3)

@@ -34,6 +34,9 @@ class KnotVector {
   int find_span(double t) const;
   /// The p+1 basis functions N_{s-p..s}(t) that may be nonzero on span s.
   void basis(int span, double t, double* values) const;
+  /// The p+1 basis functions and their first derivatives: values[0..p], then derivatives
+  /// values[p+1..2p+1]; as cheap as `basis` (the derivatives fall out of its last step).
+  void basis_first_derivatives(int span, double t, double* values) const;
   /// Basis functions and their derivatives up to `order`: values[k * (p+1) + j] is the k-th
   /// derivative of N_{s-p+j}(t). Derivatives above p are zero.
   void basis_derivatives(int span, double t, int order, double* values) const;

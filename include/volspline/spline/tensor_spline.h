@@ -88,6 +88,9 @@ class TensorSpline {
   /// the grid points with the first parameter fastest, each point `dimension()` numbers:
   /// out[(alpha * num_points + point) * dimension + c].
   std::vector<double> evaluate_grid(const std::array<std::vector<double>, D>& samples, int order = 0) const;
+  /// The same into a caller's buffer of num_multi_indices * num_points * dimension() numbers,
+  /// for repeated evaluation without allocation.
+  void evaluate_grid(const std::array<std::vector<double>, D>& samples, int order, double* out) const;
 
  private:
   struct FromHomogeneous {};

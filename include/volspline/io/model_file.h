@@ -1,0 +1,65 @@
+#pragma once
+// Model files, format version 1: a JSON document holding B-spline and Bézier curves, surfaces
+// and volumes. The format, every key and the error messages are described in
+// docs/model-format.md; storage order and domain conventions: core/conventions.h.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "volspline/spline/tensor_spline.h"
+
+namespace volspline {
+
+/// A curve (D=1), surface (D=2) or volume (D=3).
+using SplineObject = std::variant<TensorSpline<1>, TensorSpline<2>, TensorSpline<3>>;
+
+/// One entry of a model's "objects" array.
+struct ModelObject {
+  /// The optional "name"; empty if absent (an empty name is not written).
+  std::string name;
+  /// Read from a bezier_* type. Written as bezier_* when true and every knot vector is a single
+  /// clamped span on [0, 1]; otherwise written as bspline_*.
+  bool bezier = false;
+  SplineObject spline;
+  /// The object's "metadata": a JSON object, or null if absent.
+  nlohmann::json metadata;
+};
+
+/// A whole model file.
+struct Model {
+  std::vector<ModelObject> objects;
+  /// The top-level "metadata": a JSON object, or null if absent.
+  nlohmann::json metadata;
+};
+
+/// The format version this library reads and writes.
+inline constexpr int kModelFormatVersion = 1;
+
+/// Parses the text of a model file. `source_name` (usually the file name) starts every error
+/// message. \throw InvalidInput whose what() reads "SOURCE: JSON.PATH: what was expected, got
+/// what" (for example "model.json: objects[0].knots[1][3]: knots must not decrease: 0.2 follows
+/// 0.5"), or "SOURCE: line L, column C: invalid JSON: ..." for text that is not JSON.
+Model parse_model(std::string_view text, const std::string& source_name);
+
+/// Reads and parses a model file; errors name the file as given.
+/// \throw IoError if the file cannot be read, InvalidInput if it is not a valid model.
+Model read_model(const std::filesystem::path& path);
+
+/// The JSON text of a model (version 1): one control point per line, every number with 17
+/// significant digits, so that parse_model(model_to_json(m)) reproduces every double bit for bit.
+/// \throw InvalidInput if the model cannot be written as a valid file (no objects, metadata
+/// that is not a JSON object, a name that is not UTF-8).
+std::string model_to_json(const Model& model);
+
+/// Writes model_to_json(model) to `path` atomically (whole or not at all).
+/// \throw IoError if the file cannot be written, InvalidInput as model_to_json.
+void write_model(const Model& model, const std::filesystem::path& path);
+
+/// The "type" the object is written with: "bezier_curve", "bspline_volume", ...
+std::string object_type_name(const ModelObject& object);
+
+}  // namespace volspline

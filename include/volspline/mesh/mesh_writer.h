@@ -1,0 +1,53 @@
+#pragma once
+// Export of boundary meshes to the three formats other tools read: PLY keeps everything volspline
+// knows (positions, parameters, parts), OBJ and STL trade information for reach. Every writer
+// also has a `*_bytes` form returning the file contents, which is what the path form writes
+// (atomically, see io/atomic_file.h).
+#include <filesystem>
+#include <string>
+
+#include "volspline/mesh/triangle_mesh.h"
+
+namespace volspline {
+
+enum class MeshFormat { Ply, Obj, Stl };
+
+/// The format named by the extension of `path` (.ply, .obj or .stl, any letter case).
+/// \throw InvalidInput naming the path and the accepted extensions otherwise.
+MeshFormat mesh_format_from_path(const std::filesystem::path& path);
+
+struct MeshWriteOptions {
+  /// Text instead of binary, for PLY and STL; OBJ is always text.
+  bool ascii = false;
+};
+
+/// PLY 1.0, binary_little_endian unless `ascii`: vertices with double x, y, z, u, v, w (position
+/// and parameters) and faces with `list uchar int vertex_indices` and `int part`.
+std::string ply_bytes(const TriangleMesh& mesh, bool ascii = false);
+
+/// Wavefront OBJ: `v` lines and 1-based `f` lines grouped as `g part_N`, parts ascending.
+/// Parameters are not written.
+std::string obj_bytes(const TriangleMesh& mesh);
+
+/// STL: binary (80-byte header, then 50 bytes per triangle) unless `ascii` (`solid volspline`).
+/// Coordinates are single precision in binary STL; parameters and parts are not written.
+std::string stl_bytes(const TriangleMesh& mesh, bool ascii = false);
+
+/// The bytes of `mesh` in `format`.
+std::string mesh_bytes(const TriangleMesh& mesh, MeshFormat format,
+                       const MeshWriteOptions& options = {});
+
+/// Each writes the corresponding `*_bytes` to `path` atomically.
+/// \throw InvalidInput if the mesh is malformed (see validate_mesh), IoError if it cannot be
+/// written.
+void write_ply(const TriangleMesh& mesh, const std::filesystem::path& path, bool ascii = false);
+void write_obj(const TriangleMesh& mesh, const std::filesystem::path& path);
+void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path, bool ascii = false);
+
+/// Writes `mesh` in the format named by the extension of `path` (mesh_format_from_path).
+/// \throw InvalidInput for an unknown extension or a malformed mesh, IoError if it cannot be
+/// written.
+void write_mesh(const TriangleMesh& mesh, const std::filesystem::path& path,
+                const MeshWriteOptions& options = {});
+
+}  // namespace volspline

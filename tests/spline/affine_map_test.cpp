@@ -1,0 +1,73 @@
+#include "volspline/spline/affine_map.h"
+
+#include <gtest/gtest.h>
+
+#include "spline/geometry_checks.h"
+#include "volspline/core/error.h"
+
+namespace volspline {
+namespace {
+
+using testing::random_parameter;
+using testing::random_spline;
+
+TEST(AffineMap, MapsTheSplineLikeItsControlPoints) {
+  std::mt19937 rng(70);
+  Eigen::MatrixXd A(3, 3);
+  A << 1, 2, 0, -1, 0.5, 3, 0.2, 0, 1;
+  Eigen::VectorXd b(3);
+  b << 5, -1, 2;
+  for (bool rational : {false, true}) {
+    const auto s = random_spline<3>(rng, {2, 3, 2}, 2, 3, rational, true, 1, rational);
+    const auto m = transform_affine(s, A, b);
+    for (int i = 0; i < 30; ++i) {
+      const auto t = random_parameter(rng, s);
+      const Eigen::VectorXd expected = A * s.evaluate(t) + b;
+      EXPECT_LT((m.evaluate(t) - expected).norm(), 1e-12 * (1 + expected.norm()));
+    }
+  }
+  EXPECT_THROW(transform_affine(random_spline<2>(rng, {2, 2}, 2, 2, false), A, b), InvalidInput);
+}
+
+TEST(AffineMap, EmbedsPlanarCurvesInSpace) {
+  BSplineCurve half({KnotVector::bezier(2)}, 2, {1, 0, 0, 1, -1, 0}, {1, 0, 1});
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(3, 2);
+  A(0, 0) = 1;
+  A(2, 1) = 1;  // the xz plane
+  Eigen::VectorXd b = Eigen::Vector3d(0, 7, 0);
+  const auto c = transform_affine(half, A, b);
+  for (int i = 0; i <= 20; ++i) {
+    const auto x = c.evaluate({i / 20.0});
+    EXPECT_NEAR(x[1], 7.0, 1e-15);
+    EXPECT_NEAR(std::hypot(x[0], x[2]), 1.0, 1e-15);
+  }
+}
+
+template <int D>
+void check_box(const TensorSpline<D>& s, std::mt19937& rng) {
+  const auto [lo, hi] = bounding_box(s);
+  for (int i = 0; i < 500; ++i) {
+    const auto x = s.evaluate(random_parameter(rng, s));
+    for (int c = 0; c < s.dimension(); ++c) {
+      EXPECT_GE(x[c], lo[c] - 1e-12);
+      EXPECT_LE(x[c], hi[c] + 1e-12);
+    }
+  }
+}
+
+TEST(BoundingBox, ContainsTheSpline) {
+  std::mt19937 rng(71);
+  check_box(random_spline<3>(rng, {3, 2, 2}, 3, 3, false), rng);
+  check_box(random_spline<3>(rng, {2, 2, 2}, 2, 3, true, true, 1, true), rng);
+  // the semicircle's middle control point is a direction: the box is still [-1,1] x [0,1]
+  BSplineCurve half({KnotVector::bezier(2)}, 2, {1, 0, 0, 1, -1, 0}, {1, 0, 1});
+  const auto [lo, hi] = bounding_box(half);
+  EXPECT_NEAR(lo[0], -1, 1e-15);
+  EXPECT_NEAR(hi[0], 1, 1e-15);
+  EXPECT_NEAR(lo[1], 0, 1e-15);
+  EXPECT_GE(hi[1], 1.0);
+  check_box(half, rng);
+}
+
+}  // namespace
+}  // namespace volspline
