@@ -1,0 +1,96 @@
+// volspline convert MODEL -o OUT.json [--insert-knots DIR:V,...] [--elevate DIR:TIMES] [--bezier]
+#include <iostream>
+
+#include "cli_support.h"
+#include "commands.h"
+#include "volspline/core/error.h"
+#include "volspline/spline/bezier_extraction.h"
+#include "volspline/spline/degree_elevation.h"
+#include "volspline/spline/knot_insertion.h"
+
+namespace volspline::cli {
+
+namespace {
+
+struct Refinement {
+  int direction;
+  std::vector<double> knots;  // insertion
+  int times = 0;              // elevation
+};
+
+std::pair<int, std::string> split_direction(const std::string& text, const std::string& option) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) throw InvalidInput("expected DIR:VALUES such as w:0.25,0.5, got '" + text + "'", option);
+  return {parse_direction(text.substr(0, colon), option), text.substr(colon + 1)};
+}
+
+}  // namespace
+
+void add_convert_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("convert", "Rewrite a model: insert knots, elevate degrees, split into Bézier pieces (geometry unchanged)");
+  auto in = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto inserts = std::make_shared<std::vector<std::string>>();
+  auto elevations = std::make_shared<std::vector<std::string>>();
+  auto bezier = std::make_shared<bool>(false);
+  cmd->add_option("MODEL", *in, "input model file")->required();
+  cmd->add_option("-o,--output", *out, "output model file (.json)")->required();
+  cmd->add_option("--insert-knots", *inserts, "DIR:VALUE[,VALUE...] knots to insert in direction u, v or w; repeatable");
+  cmd->add_option("--elevate", *elevations, "DIR:TIMES raise the degree in a direction; repeatable");
+  cmd->add_flag("--bezier", *bezier, "write every nonempty knot cell as its own bezier_* object (after the other steps)");
+  cmd->callback([=] {
+    std::vector<Refinement> steps;
+    for (const auto& s : *inserts) {
+      auto [d, rest] = split_direction(s, "--insert-knots");
+      steps.push_back({d, parse_numbers(rest, static_cast<std::size_t>(std::count(rest.begin(), rest.end(), ',') + 1), "--insert-knots"), 0});
+    }
+    for (const auto& s : *elevations) {
+      auto [d, rest] = split_direction(s, "--elevate");
+      steps.push_back({d, {}, parse_integers(rest, 1, 1, "--elevate")[0]});
+    }
+    Model model = read_model(*in);
+    Model result;
+    result.metadata = model.metadata;
+    for (std::size_t i = 0; i < model.objects.size(); ++i) {
+      ModelObject& object = model.objects[i];
+      const std::string where = "objects[" + std::to_string(i) + "]";
+      std::visit(
+          [&](auto& s) {
+            using Spline = std::decay_t<decltype(s)>;
+            for (const auto& step : steps) {
+              if (step.direction >= Spline::num_parameters)
+                throw InvalidInput("direction " + std::to_string(step.direction) + " does not exist for a " +
+                                       object_type_name(object),
+                                   where);
+              try {
+                s = step.times ? elevate_degree(s, step.direction, step.times) : refine_knots(s, step.direction, step.knots);
+              } catch (const InvalidInput& e) {
+                throw e.located(where);
+              }
+            }
+            if (!*bezier) {
+              object.bezier = object.bezier && std::all_of(s.knot_vectors().begin(), s.knot_vectors().end(),
+                                                           [](const KnotVector& k) { return k.is_bezier(); });
+              result.objects.push_back(object);
+              return;
+            }
+            const auto pieces = bezier_pieces(s);
+            for (std::size_t c = 0; c < pieces.size(); ++c) {
+              // A Bézier piece is the same control net on [0,1]^D (affine reparameterisation).
+              auto knots = pieces[c].knot_vectors();
+              for (auto& k : knots) k = KnotVector::bezier(k.degree());
+              ModelObject piece{object.name.empty() ? "" : object.name + " cell " + std::to_string(c), true,
+                                Spline::from_homogeneous(knots, pieces[c].dimension(), pieces[c].is_rational(),
+                                                         pieces[c].homogeneous()),
+                                object.metadata};
+              result.objects.push_back(std::move(piece));
+            }
+          },
+          object.spline);
+    }
+    write_model(result, *out);
+    std::cout << "wrote " << *out << " (" << result.objects.size() << " object(s))\n";
+  });
+}
+
+}  // namespace volspline::cli

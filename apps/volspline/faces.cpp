@@ -1,0 +1,54 @@
+// volspline faces MODEL -o OUT.(ply|obj|stl) [--png IMAGE.png] [--resolution N] [--ascii]
+#include <iostream>
+
+#include "commands.h"
+#include "volspline/core/error.h"
+#include "volspline/io/model_file.h"
+#include "volspline/mesh/face_tessellation.h"
+#include "volspline/mesh/mesh_checks.h"
+#include "volspline/mesh/mesh_writer.h"
+#include "volspline/render/image.h"
+#include "volspline/render/mesh_renderer.h"
+
+namespace volspline::cli {
+
+void add_faces_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("faces", "Tessellate the six boundary faces of every volume (parts 0..5) into one welded mesh");
+  auto in = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto png = std::make_shared<std::string>();
+  auto resolution = std::make_shared<int>(24);
+  auto ascii = std::make_shared<bool>(false);
+  cmd->add_option("MODEL", *in, "model file")->required();
+  cmd->add_option("-o,--output", *out, "mesh file: .ply (binary; x y z u v w, face part), .obj or .stl")->required();
+  cmd->add_option("--png", *png, "also render a shaded picture of the faces");
+  cmd->add_option("--resolution", *resolution, "segments per parameter direction, plus every knot (default 24)")->check(CLI::Range(1, 4096));
+  cmd->add_flag("--ascii", *ascii, "write PLY or STL as text");
+  cmd->callback([=] {
+    const auto format = mesh_format_from_path(*out);  // reject a bad extension before any work
+    if (!png->empty() && std::filesystem::path(*png).extension() != ".png")
+      throw InvalidInput("expected a file name ending in .png, got '" + *png + "'", "--png");
+    const Model model = read_model(*in);
+    TriangleMesh mesh;
+    int volumes = 0;
+    for (const auto& object : model.objects) {
+      if (const auto* v = std::get_if<BSplineVolume>(&object.spline)) {
+        mesh.append(tessellate_faces(*v, {.resolution = *resolution}));
+        ++volumes;
+      }
+    }
+    if (volumes == 0) throw InvalidInput("the model has no volume objects (bspline_volume or bezier_volume)", *in);
+    write_mesh(mesh, *out, {.ascii = *ascii});
+    (void)format;
+    const auto stats = edge_statistics(mesh);
+    std::cout << "wrote " << *out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles from "
+              << volumes << " volume(s); " << (stats.closed() ? "closed" : "not closed") << " (" << stats.boundary_edges
+              << " boundary, " << stats.nonmanifold_edges << " non-manifold edges)\n";
+    if (!png->empty()) {
+      write_png(render_mesh(mesh, {}), *png);
+      std::cout << "wrote " << *png << "\n";
+    }
+  });
+}
+
+}  // namespace volspline::cli

@@ -1,0 +1,631 @@
+#include "volspline/io/model_file.h"
+
+#include <algorithm>
+#include <array>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "volspline/core/error.h"
+#include "volspline/core/format.h"
+#include "volspline/io/atomic_file.h"
+
+namespace volspline {
+
+namespace {
+
+using nlohmann::json;
+
+/// Deepest nesting of arrays and objects accepted in a model file. A model itself needs 5
+/// levels (top, objects, object, knots, knot vector); the rest is room for metadata. The limit
+/// keeps recursive JSON operations (copy, dump, comparison) far from the stack's end.
+constexpr std::size_t kMaxDepth = 64;
+
+// ------------------------------------------------------------------------------------------
+// JSON paths and descriptions of values for messages.
+
+bool is_identifier(const std::string& key) {
+  if (key.empty()) return false;
+  const auto alpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+  if (!alpha(key[0])) return false;
+  return std::all_of(key.begin(), key.end(), [&](char c) { return alpha(c) || (c >= '0' && c <= '9'); });
+}
+
+/// A JSON string literal for `text`, shortened to about `limit` bytes for messages.
+std::string json_quoted(const std::string& text, std::size_t limit = 40) {
+  std::string shown = text.size() > limit ? text.substr(0, limit) : text;
+  std::string literal = json(shown).dump(-1, ' ', false, json::error_handler_t::replace);
+  if (shown.size() < text.size()) literal.insert(literal.size() - 1, "...");
+  return literal;
+}
+
+std::string key_path(const std::string& parent, const std::string& key) {
+  if (!is_identifier(key)) return parent + "[" + json_quoted(key, 1000) + "]";
+  return parent.empty() ? key : parent + "." + key;
+}
+
+std::string index_path(const std::string& parent, std::size_t index) {
+  return parent + "[" + std::to_string(index) + "]";
+}
+
+std::string describe(const json& value) {
+  switch (value.type()) {
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return value.get<bool>() ? "true" : "false";
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::number_float:
+      return value.dump();
+    case json::value_t::string:
+      return "the string " + json_quoted(value.get_ref<const std::string&>());
+    case json::value_t::array:
+      if (value.empty()) return "an empty array";
+      return value.size() == 1 ? "an array of 1 element" : "an array of " + std::to_string(value.size()) + " elements";
+    case json::value_t::object:
+      return value.empty() ? "an empty object" : "an object";
+    default:
+      return "a value of an unsupported kind";
+  }
+}
+
+[[noreturn]] void fail(const std::string& expected, const json& got, const std::string& path) {
+  throw InvalidInput("expected " + expected + ", got " + describe(got), path);
+}
+
+// ------------------------------------------------------------------------------------------
+// Parsing JSON text into a DOM: a SAX handler that rejects duplicate keys, limits the nesting
+// depth, reports numbers beyond the range of a double at their JSON path, and converts
+// syntax errors into "line L, column C" messages.
+
+class DomBuilder {
+ public:
+  DomBuilder(std::string_view text, json& root) : text_(text), root_(root) {}
+
+  bool null() { return add(json(nullptr)); }
+  bool boolean(bool value) { return add(json(value)); }
+  bool number_integer(json::number_integer_t value) { return add(json(value)); }
+  bool number_unsigned(json::number_unsigned_t value) { return add(json(value)); }
+  bool number_float(json::number_float_t value, const json::string_t& /*text*/) { return add(json(value)); }
+  bool string(json::string_t& value) { return add(json(std::move(value))); }
+  bool binary(json::binary_t& value) { return add(json::binary(std::move(value))); }
+
+  bool start_object(std::size_t /*elements*/) { return open(json::object(), true); }
+  bool start_array(std::size_t /*elements*/) { return open(json::array(), false); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(json::string_t& key) {
+    Frame& top = frames_.back();
+    top.key = key;
+    if (top.value->contains(key)) {
+      throw InvalidInput("duplicate key " + json_quoted(key) + ": every key may appear only once in an object",
+                         current_path());
+    }
+    return true;
+  }
+
+  bool parse_error(std::size_t position, const std::string& last_token, const json::exception& error) {
+    if (error.id == 406) {
+      // nlohmann rejects numbers such as 1e999 that overflow a double: say where.
+      throw InvalidInput("expected a finite number, got " + last_token + " (beyond the range of a double)",
+                         current_path());
+    }
+    throw InvalidInput("invalid JSON: " + reason(error.what()), line_and_column(position));
+  }
+
+ private:
+  struct Frame {
+    json* value;
+    bool object;
+    std::string key;
+  };
+
+  /// The JSON path of the value that is parsed next (or is being parsed).
+  std::string current_path() const {
+    std::string path;
+    for (std::size_t i = 0; i < frames_.size(); ++i) {
+      const Frame& f = frames_[i];
+      if (f.object) {
+        path = key_path(path, f.key);
+      } else {
+        // An enclosing array's current element is its last; the innermost one's is the next.
+        const std::size_t size = f.value->size();
+        path = index_path(path, i + 1 < frames_.size() ? size - 1 : size);
+      }
+    }
+    return path;
+  }
+
+  /// Where nlohmann stopped: `position` counts the bytes read, the offending one included.
+  std::string line_and_column(std::size_t position) const {
+    const std::size_t at = std::min(position > 0 ? position - 1 : 0, text_.size());
+    std::size_t line = 1;
+    std::size_t line_start = 0;
+    for (std::size_t i = 0; i < at; ++i) {
+      if (text_[i] == '\n') {
+        ++line;
+        line_start = i + 1;
+      }
+    }
+    return "line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1);
+  }
+
+  /// nlohmann's message without its "[json.exception...] parse error at line L, column C: ".
+  static std::string reason(const std::string& what) {
+    std::string text = what;
+    if (const auto bracket = text.find("] "); text.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) {
+      text = text.substr(bracket + 2);
+    }
+    if (text.rfind("parse error", 0) == 0) {
+      if (const auto colon = text.find(": "); colon != std::string::npos) text = text.substr(colon + 2);
+    }
+    return text;
+  }
+
+  bool add(json value) {
+    if (frames_.empty()) {
+      root_ = std::move(value);
+      return true;
+    }
+    Frame& top = frames_.back();
+    if (top.object) {
+      (*top.value)[top.key] = std::move(value);
+    } else {
+      top.value->push_back(std::move(value));
+    }
+    return true;
+  }
+
+  bool open(json container, bool object) {
+    if (frames_.size() >= kMaxDepth) {
+      throw InvalidInput("expected at most " + std::to_string(kMaxDepth) +
+                             " levels of nested arrays and objects, got more",
+                         current_path());
+    }
+    json* slot = nullptr;
+    if (frames_.empty()) {
+      root_ = std::move(container);
+      slot = &root_;
+    } else {
+      Frame& top = frames_.back();
+      if (top.object) {
+        slot = &((*top.value)[top.key] = std::move(container));
+      } else {
+        top.value->push_back(std::move(container));
+        slot = &top.value->back();
+      }
+    }
+    frames_.push_back(Frame{slot, object, {}});
+    return true;
+  }
+
+  bool close() {
+    frames_.pop_back();
+    return true;
+  }
+
+  std::string_view text_;
+  json& root_;
+  std::vector<Frame> frames_;
+};
+
+json parse_json(std::string_view text) {
+  json root;
+  DomBuilder builder(text, root);
+  json::sax_parse(text.data(), text.data() + text.size(), &builder);
+  return root;
+}
+
+// ------------------------------------------------------------------------------------------
+// Interpreting the DOM.
+
+struct TypeInfo {
+  const char* name;
+  int parameters;
+  bool bezier;
+};
+
+constexpr std::array<TypeInfo, 6> kTypes{{
+    {"bspline_curve", 1, false},
+    {"bspline_surface", 2, false},
+    {"bspline_volume", 3, false},
+    {"bezier_curve", 1, true},
+    {"bezier_surface", 2, true},
+    {"bezier_volume", 3, true},
+}};
+
+void check_keys(const json& object, const std::string& path, std::initializer_list<const char*> allowed) {
+  for (const auto& item : object.items()) {
+    const std::string& key = item.key();
+    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) {
+      std::string list;
+      for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      throw InvalidInput("unknown key " + json_quoted(key) + ": expected one of " + list +
+                             " (free-form data belongs under \"metadata\")",
+                         key_path(path, key));
+    }
+  }
+}
+
+const json& required(const json& object, const char* key, const std::string& path, const std::string& what) {
+  const auto it = object.find(key);
+  if (it == object.end()) {
+    throw InvalidInput("missing key \"" + std::string(key) + "\" (" + what + ")", path);
+  }
+  return *it;
+}
+
+double number(const json& value, const std::string& path) {
+  if (!value.is_number()) fail("a number", value, path);
+  const double x = value.get<double>();
+  // The parser rejects overflowing literals already; this guards every other route.
+  if (!std::isfinite(x)) fail("a finite number", value, path);
+  return x;
+}
+
+std::vector<double> numbers(const json& value, const std::string& path, const std::string& what) {
+  if (!value.is_array()) fail(what, value, path);
+  std::vector<double> out;
+  out.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) out.push_back(number(value[i], index_path(path, i)));
+  return out;
+}
+
+json metadata(const json& object, const std::string& path) {
+  const auto it = object.find("metadata");
+  if (it == object.end()) return nullptr;
+  if (!it->is_object()) fail("a JSON object", *it, key_path(path, "metadata"));
+  return *it;
+}
+
+/// "4 x 5 x 3", the control-point grid from the degrees and knots.
+template <int D>
+std::string shape_text(const std::array<std::uint64_t, D>& counts) {
+  std::string shape;
+  for (int d = 0; d < D; ++d) shape += (d ? " x " : "") + std::to_string(counts[static_cast<std::size_t>(d)]);
+  return shape;
+}
+
+template <int D>
+TensorSpline<D> read_spline(const json& object, const std::string& path, const TypeInfo& type) {
+  const std::string type_name = type.name;
+
+  // Degrees: integers >= 1, one per direction.
+  const std::string degree_path = key_path(path, "degree");
+  const json& degree_json =
+      required(object, "degree", path, "an array of " + std::to_string(D) + " integers for a " + type_name);
+  const std::string degree_what = D == 1 ? "an array of 1 integer (the degree of a " + type_name + ")"
+                                         : "an array of " + std::to_string(D) +
+                                               " integers (one degree per direction of a " + type_name + ")";
+  if (!degree_json.is_array() || degree_json.size() != static_cast<std::size_t>(D)) fail(degree_what, degree_json, degree_path);
+  std::array<int, D> degrees{};
+  for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
+    const json& value = degree_json[d];
+    const std::string at = index_path(degree_path, d);
+    if (!value.is_number_integer()) fail("an integer degree", value, at);
+    // nlohmann stores nonnegative integer literals as unsigned, negative ones as signed.
+    if (!value.is_number_unsigned() || value.get<std::uint64_t>() < 1) fail("a degree of at least 1", value, at);
+    if (value.get<std::uint64_t>() > static_cast<std::uint64_t>(INT_MAX)) {
+      fail("a degree of at most " + std::to_string(INT_MAX), value, at);
+    }
+    degrees[d] = static_cast<int>(value.get<std::uint64_t>());
+  }
+
+  // Knot vectors. Bézier knots follow from the degrees and are made only once the control
+  // points show that the degrees are real (a degree of 10^9 must not allocate 2 * 10^9 knots).
+  std::vector<KnotVector> knots;
+  std::array<std::uint64_t, D> counts{};
+  const std::string knots_path = key_path(path, "knots");
+  if (type.bezier) {
+    for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) counts[d] = static_cast<std::uint64_t>(degrees[d]) + 1;
+  } else {
+    const json& knots_json = required(object, "knots", path, "one knot vector per direction");
+    const std::string knots_what = D == 1 ? "an array of 1 knot vector (an array of numbers)"
+                                          : "an array of " + std::to_string(D) + " knot vectors (arrays of numbers)";
+    if (!knots_json.is_array() || knots_json.size() != static_cast<std::size_t>(D)) fail(knots_what, knots_json, knots_path);
+    for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
+      const std::string at = index_path(knots_path, d);
+      std::vector<double> values = numbers(knots_json[d], at, "a knot vector (an array of numbers)");
+      // The count is checked before anything is sized by the degree.
+      const std::uint64_t needed = 2 * (static_cast<std::uint64_t>(degrees[d]) + 1);
+      if (values.size() < needed) {
+        throw InvalidInput("a knot vector of degree " + std::to_string(degrees[d]) + " needs at least " +
+                               std::to_string(needed) + " knots, got " + std::to_string(values.size()),
+                           at);
+      }
+      try {
+        knots.emplace_back(degrees[d], std::move(values));
+      } catch (const InvalidInput& e) {
+        throw e.located(at);
+      }
+      counts[d] = static_cast<std::uint64_t>(knots.back().num_basis());
+    }
+  }
+
+  // Control points: the count must match the grid; every point has k = size of the first.
+  const std::string points_path = key_path(path, "control_points");
+  const json& points_json = required(object, "control_points", path, "an array of control points, u fastest");
+  if (!points_json.is_array()) fail("an array of control points (arrays of numbers)", points_json, points_path);
+  std::uint64_t expected = 1;
+  bool overflow = false;
+  for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
+    if (counts[d] != 0 && expected > static_cast<std::uint64_t>(INT_MAX) / counts[d]) overflow = true;
+    if (!overflow) expected *= counts[d];
+  }
+  if (overflow || expected != points_json.size()) {
+    const std::string from = type.bezier ? " from the degrees" : " from the degrees and knots";
+    throw InvalidInput(
+        "expected " + (overflow ? shape_text<D>(counts) + " control points (" + from.substr(1) + ")"
+                                : std::to_string(expected) + " control points (" + shape_text<D>(counts) + from + ")") +
+            ", got " + std::to_string(points_json.size()),
+        points_path);
+  }
+  const std::size_t n = points_json.size();
+  const json& first = points_json[0];
+  if (!first.is_array() || first.empty()) {
+    fail("a control point (an array of at least one number)", first, index_path(points_path, 0));
+  }
+  const std::size_t k = first.size();
+  if (k > static_cast<std::size_t>(INT_MAX)) fail("a control point with fewer coordinates", first, index_path(points_path, 0));
+  std::vector<double> points;
+  points.reserve(n * k);
+  for (std::size_t i = 0; i < n; ++i) {
+    const json& point = points_json[i];
+    const std::string at = index_path(points_path, i);
+    if (!point.is_array() || point.size() != k) {
+      fail("a control point with " + std::to_string(k) + (k == 1 ? " coordinate" : " coordinates") +
+               " (as many as control_points[0])",
+           point, at);
+    }
+    for (std::size_t c = 0; c < k; ++c) points.push_back(number(point[c], index_path(at, c)));
+  }
+
+  // Weights (optional): one per control point, each >= 0.
+  std::vector<double> weights;
+  if (const auto it = object.find("weights"); it != object.end()) {
+    const std::string weights_path = key_path(path, "weights");
+    if (!it->is_array() || it->size() != n) {
+      fail("an array of " + std::to_string(n) + " weights (one per control point)", *it, weights_path);
+    }
+    weights = numbers(*it, weights_path, "an array of weights");
+    for (std::size_t i = 0; i < n; ++i) {
+      if (weights[i] < 0.0) fail("a weight >= 0", (*it)[i], index_path(weights_path, i));
+    }
+  }
+
+  if (type.bezier) {
+    for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) knots.push_back(KnotVector::bezier(degrees[d]));
+  }
+  std::array<KnotVector, D> knot_array = [&]<std::size_t... I>(std::index_sequence<I...>) {
+    return std::array<KnotVector, D>{std::move(knots[I])...};
+  }(std::make_index_sequence<D>{});
+
+  try {
+    return TensorSpline<D>(std::move(knot_array), static_cast<int>(k), std::move(points), std::move(weights));
+  } catch (const InvalidInput& e) {
+    throw e.located(path);
+  }
+}
+
+ModelObject read_object(const json& object, const std::string& path) {
+  if (!object.is_object()) fail("an object (a curve, surface or volume)", object, path);
+  check_keys(object, path, {"name", "type", "degree", "knots", "control_points", "weights", "metadata"});
+
+  const json& type_json = required(object, "type", path, "one of bspline_curve, bspline_surface, bspline_volume, "
+                                                         "bezier_curve, bezier_surface, bezier_volume");
+  const std::string type_path = key_path(path, "type");
+  std::string names;
+  for (const TypeInfo& t : kTypes) names += (names.empty() ? "" : ", ") + std::string(t.name);
+  if (!type_json.is_string()) fail("a type name (one of " + names + ")", type_json, type_path);
+  const std::string& type_name = type_json.get_ref<const std::string&>();
+  const auto type = std::find_if(kTypes.begin(), kTypes.end(), [&](const TypeInfo& t) { return type_name == t.name; });
+  if (type == kTypes.end()) fail("one of " + names, type_json, type_path);
+  if (type->bezier && object.contains("knots")) {
+    throw InvalidInput(std::string("a ") + type->name + " has no \"knots\": its domain is [0, 1] in every direction "
+                           "(use type \"bspline_" + (type_name.c_str() + 7) + "\" to give knots)",
+                       key_path(path, "knots"));
+  }
+
+  std::string name;
+  if (const auto it = object.find("name"); it != object.end()) {
+    if (!it->is_string()) fail("a string", *it, key_path(path, "name"));
+    name = it->get<std::string>();
+  }
+  json object_metadata = metadata(object, path);
+  const auto spline = [&]() -> SplineObject {
+    switch (type->parameters) {
+      case 1:
+        return read_spline<1>(object, path, *type);
+      case 2:
+        return read_spline<2>(object, path, *type);
+      default:
+        return read_spline<3>(object, path, *type);
+    }
+  };
+  return ModelObject{std::move(name), type->bezier, spline(), std::move(object_metadata)};
+}
+
+Model read_document(const json& root) {
+  if (!root.is_object()) fail("a JSON object with the keys \"volspline\" and \"objects\"", root, "");
+  check_keys(root, "", {"volspline", "objects", "metadata"});
+
+  const json& version = required(root, "volspline", "", "the format version: 1");
+  const std::string supported = "this reader supports version " + std::to_string(kModelFormatVersion);
+  if (!version.is_number_integer()) fail("the format version as an integer (" + supported + ")", version, "volspline");
+  if (version.is_number_unsigned() ? version.get<std::uint64_t>() != static_cast<std::uint64_t>(kModelFormatVersion)
+                                   : version.get<std::int64_t>() != kModelFormatVersion) {
+    throw InvalidInput("unsupported format version " + version.dump() + ": " + supported, "volspline");
+  }
+
+  const json& objects = required(root, "objects", "", "a nonempty array of curves, surfaces and volumes");
+  if (!objects.is_array() || objects.empty()) {
+    fail("a nonempty array of objects (curves, surfaces and volumes)", objects, "objects");
+  }
+  Model model;
+  model.metadata = metadata(root, "");
+  model.objects.reserve(objects.size());
+  for (std::size_t i = 0; i < objects.size(); ++i) model.objects.push_back(read_object(objects[i], index_path("objects", i)));
+  return model;
+}
+
+// ------------------------------------------------------------------------------------------
+// Writing.
+
+/// A number as written: 17 significant digits, and "-0.0" for negative zero (a JSON reader
+/// takes "-0" for the integer 0).
+std::string number_text(double value) {
+  std::string text = format_double(value);
+  if (value == 0.0 && std::signbit(value)) text = "-0.0";
+  return text;
+}
+
+/// "[a, b, c]" on one line if it fits in kLineWidth characters, else wrapped at that width.
+void write_numbers(std::ostringstream& out, const double* values, std::size_t count, const std::string& indent) {
+  constexpr std::size_t kLineWidth = 100;
+  std::vector<std::string> texts;
+  std::size_t total = indent.size() + 2;
+  for (std::size_t i = 0; i < count; ++i) {
+    texts.push_back(number_text(values[i]));
+    total += texts.back().size() + 2;
+  }
+  if (total <= kLineWidth) {
+    out << '[';
+    for (std::size_t i = 0; i < count; ++i) out << (i ? ", " : "") << texts[i];
+    out << ']';
+    return;
+  }
+  out << "[\n" << indent << "  ";
+  std::size_t column = indent.size() + 2;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (i > 0) {
+      if (column + 2 + texts[i].size() + 1 > kLineWidth) {
+        out << ",\n" << indent << "  ";
+        column = indent.size() + 2;
+      } else {
+        out << ", ";
+        column += 2;
+      }
+    }
+    out << texts[i];
+    column += texts[i].size();
+  }
+  out << '\n' << indent << ']';
+}
+
+std::string json_text(const json& value, const std::string& path, const std::string& indent, bool pretty) {
+  std::string text;
+  try {
+    text = value.dump(pretty ? 2 : -1, ' ', false, json::error_handler_t::strict);
+  } catch (const json::exception&) {
+    throw InvalidInput("expected text in UTF-8, got invalid UTF-8", path);
+  }
+  std::string indented;
+  for (char c : text) {
+    indented += c;
+    if (c == '\n') indented += indent;
+  }
+  return indented;
+}
+
+void write_metadata(std::ostringstream& out, const json& metadata, const std::string& path, const std::string& indent) {
+  if (!metadata.is_object()) fail("a JSON object or null", metadata, path);
+  out << ",\n" << indent << "\"metadata\": " << json_text(metadata, path, indent, true);
+}
+
+bool is_unit_bezier(const KnotVector& kv) {
+  const double a = kv.knots().front();
+  return kv.is_bezier() && a == 0.0 && !std::signbit(a) && kv.knots().back() == 1.0;
+}
+
+template <int D>
+void write_spline(std::ostringstream& out, const TensorSpline<D>& spline, bool bezier, const std::string& indent) {
+  out << indent << "\"degree\": [";
+  for (int d = 0; d < D; ++d) out << (d ? ", " : "") << spline.knot_vector(d).degree();
+  out << "]";
+  if (!bezier) {
+    out << ",\n" << indent << "\"knots\": [\n";
+    for (int d = 0; d < D; ++d) {
+      const std::vector<double>& knots = spline.knot_vector(d).knots();
+      out << indent << "  ";
+      write_numbers(out, knots.data(), knots.size(), indent + "  ");
+      out << (d + 1 < D ? ",\n" : "\n");
+    }
+    out << indent << "]";
+  }
+  const std::size_t n = static_cast<std::size_t>(spline.num_control_points_total());
+  const std::size_t k = static_cast<std::size_t>(spline.dimension());
+  out << ",\n" << indent << "\"control_points\": [\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    out << indent << "  [";
+    for (std::size_t c = 0; c < k; ++c) out << (c ? ", " : "") << number_text(spline.points()[i * k + c]);
+    out << (i + 1 < n ? "],\n" : "]\n");
+  }
+  out << indent << "]";
+  if (spline.is_rational()) {
+    out << ",\n" << indent << "\"weights\": ";
+    write_numbers(out, spline.weights().data(), spline.weights().size(), indent);
+  }
+}
+
+}  // namespace
+
+Model parse_model(std::string_view text, const std::string& source_name) {
+  try {
+    return read_document(parse_json(text));
+  } catch (const InvalidInput& e) {
+    std::string where = source_name;
+    if (!where.empty() && !e.where().empty()) where += ": ";
+    where += e.where();
+    throw InvalidInput(e.message(), where);
+  }
+}
+
+Model read_model(const std::filesystem::path& path) { return parse_model(read_file(path), path.string()); }
+
+std::string object_type_name(const ModelObject& object) {
+  return std::visit(
+      [&](const auto& spline) {
+        bool bezier = object.bezier;
+        for (const KnotVector& kv : spline.knot_vectors()) bezier = bezier && is_unit_bezier(kv);
+        const std::size_t parameters = spline.knot_vectors().size();
+        static const char* const kShapes[] = {"curve", "surface", "volume"};
+        return std::string(bezier ? "bezier_" : "bspline_") + kShapes[parameters - 1];
+      },
+      object.spline);
+}
+
+std::string model_to_json(const Model& model) {
+  if (model.objects.empty()) throw InvalidInput("expected at least one object, got none", "objects");
+  std::ostringstream out;
+  out << "{\n  \"volspline\": " << kModelFormatVersion << ",\n  \"objects\": [\n";
+  const std::string indent = "      ";
+  for (std::size_t i = 0; i < model.objects.size(); ++i) {
+    const ModelObject& object = model.objects[i];
+    const std::string path = index_path("objects", i);
+    out << "    {\n";
+    if (!object.name.empty()) {
+      out << indent << "\"name\": " << json_text(json(object.name), key_path(path, "name"), indent, false) << ",\n";
+    }
+    const std::string type = object_type_name(object);
+    out << indent << "\"type\": \"" << type << "\",\n";
+    const bool bezier = type.rfind("bezier_", 0) == 0;
+    std::visit([&](const auto& spline) { write_spline(out, spline, bezier, indent); }, object.spline);
+    if (!object.metadata.is_null()) write_metadata(out, object.metadata, key_path(path, "metadata"), indent);
+    out << "\n    }" << (i + 1 < model.objects.size() ? ",\n" : "\n");
+  }
+  out << "  ]";
+  if (!model.metadata.is_null()) write_metadata(out, model.metadata, "metadata", "  ");
+  out << "\n}\n";
+  return out.str();
+}
+
+void write_model(const Model& model, const std::filesystem::path& path) {
+  write_file_atomically(path, model_to_json(model));
+}
+
+}  // namespace volspline
