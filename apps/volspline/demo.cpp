@@ -1,5 +1,6 @@
 // volspline demo [--out DIR]: example solids built in code, each written as a model, a face
 // mesh and a picture.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -32,7 +33,9 @@ void add_demo_command(CLI::App& app) {
     for (const auto& e : examples) {
       const std::filesystem::path base = std::filesystem::path(*dir) / e.name;
       Model model;
-      model.objects.push_back({e.name, false, e.volume, nullptr});
+      const bool bezier = std::all_of(e.volume.knot_vectors().begin(), e.volume.knot_vectors().end(),
+                                      [](const KnotVector& k) { return k.is_bezier() && k.domain_min() == 0 && k.domain_max() == 1; });
+      model.objects.push_back({e.name, bezier, e.volume, nullptr});
       write_model(model, base.string() + ".json");
       const TriangleMesh mesh = tessellate_faces(e.volume, {.resolution = 32});
       write_mesh(mesh, base.string() + ".ply");

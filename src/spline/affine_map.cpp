@@ -5,6 +5,7 @@
 
 #include "volspline/core/error.h"
 #include "volspline/spline/degree_elevation.h"
+#include "volspline/spline/knot_insertion.h"
 
 namespace volspline {
 
@@ -30,8 +31,16 @@ TensorSpline<D> transform_affine(const TensorSpline<D>& spline, const Eigen::Mat
 }
 
 template <int D>
-std::pair<Eigen::VectorXd, Eigen::VectorXd> bounding_box(const TensorSpline<D>& spline) {
+std::pair<Eigen::VectorXd, Eigen::VectorXd> bounding_box(const TensorSpline<D>& spline, int subdivisions) {
   TensorSpline<D> s = spline;
+  for (int d = 0; d < D; ++d) {
+    for (int round = 0; round < subdivisions; ++round) {
+      const auto breaks = s.knot_vector(d).breakpoints();
+      std::vector<double> midpoints;
+      for (std::size_t i = 0; i + 1 < breaks.size(); ++i) midpoints.push_back(0.5 * (breaks[i] + breaks[i + 1]));
+      s = refine_knots(s, d, midpoints);
+    }
+  }
   auto has_zero_weight = [](const TensorSpline<D>& x) {
     return std::any_of(x.weights().begin(), x.weights().end(), [](double w) { return w == 0.0; });
   };
@@ -47,7 +56,7 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> bounding_box(const TensorSpline<D>& 
 
 #define VOLSPLINE_INSTANTIATE(D)                                                                                 \
   template TensorSpline<D> transform_affine(const TensorSpline<D>&, const Eigen::MatrixXd&, const Eigen::VectorXd&); \
-  template std::pair<Eigen::VectorXd, Eigen::VectorXd> bounding_box(const TensorSpline<D>&);
+  template std::pair<Eigen::VectorXd, Eigen::VectorXd> bounding_box(const TensorSpline<D>&, int);
 VOLSPLINE_INSTANTIATE(1)
 VOLSPLINE_INSTANTIATE(2)
 VOLSPLINE_INSTANTIATE(3)

@@ -28,9 +28,15 @@ TEST(HalfCylinderShell, LiesExactlyOnTheCylinders) {
     EXPECT_NEAR(std::hypot(outer[0], outer[1]), 2.0, 1e-12);
   }
   // Its boundary encloses half an annulus times the height: pi/2 (4 - 1) 3.
-  const auto mesh = tessellate_faces(v, {.resolution = 64});
-  EXPECT_TRUE(edge_statistics(mesh).closed());
-  EXPECT_NEAR(enclosed_volume(mesh), std::numbers::pi / 2 * 3 * 3, 5e-3);
+  // Polygonal approximations converge quadratically in the resolution.
+  const double exact = std::numbers::pi / 2 * 3 * 3;
+  const auto coarse = tessellate_faces(v, {.resolution = 32});
+  const auto fine = tessellate_faces(v, {.resolution = 64});
+  EXPECT_TRUE(edge_statistics(fine).closed());
+  const double e_coarse = exact - enclosed_volume(coarse), e_fine = exact - enclosed_volume(fine);
+  EXPECT_GT(e_fine, 0.0);  // inscribed polygons
+  EXPECT_LT(e_fine, 1e-2);
+  EXPECT_NEAR(e_coarse / e_fine, 4.0, 0.2);
 }
 
 TEST(ExampleSolids, AreClosedWithPositiveVolume) {

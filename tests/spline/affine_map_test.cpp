@@ -67,6 +67,10 @@ TEST(BoundingBox, ContainsTheSpline) {
   EXPECT_NEAR(lo[1], 0, 1e-15);
   EXPECT_GE(hi[1], 1.0);
   check_box(half, rng);
+  // subdivision tightens the box towards the true one, [-1, 1] x [0, 1]
+  const auto [tlo, thi] = bounding_box(half, 5);
+  EXPECT_NEAR(thi[1], 1.0, 2e-3);
+  EXPECT_LT(thi[1], hi[1]);
 }
 
 }  // namespace

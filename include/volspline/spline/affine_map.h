@@ -17,8 +17,10 @@ TensorSpline<D> transform_affine(const TensorSpline<D>& spline, const Eigen::Mat
 /// An axis-aligned box containing the spline over its whole domain: the box of the control
 /// points (convex hull property). Weight-0 control points are not in the hull; they are first
 /// removed by degree elevation, whose new weights are positive combinations of neighbouring
-/// ones (Lasser 1994, after eq. 5). Returns (min, max).
+/// ones (Lasser 1994, after eq. 5). With `subdivisions` > 0 every knot span is first halved
+/// that many times by knot insertion; the control net then approaches the spline
+/// quadratically, so the box tightens to the true one. Returns (min, max).
 template <int D>
-std::pair<Eigen::VectorXd, Eigen::VectorXd> bounding_box(const TensorSpline<D>& spline);
+std::pair<Eigen::VectorXd, Eigen::VectorXd> bounding_box(const TensorSpline<D>& spline, int subdivisions = 0);
 
 }  // namespace volspline

@@ -1,0 +1,245 @@
+// The command line end to end: outputs, exit codes, error messages and files left behind.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+#include "support/temporary_directory.h"
+#include "volspline/construct/example_solids.h"
+#include "volspline/io/model_file.h"
+
+namespace volspline {
+namespace {
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result run(const std::string& args, const std::filesystem::path& dir) {
+  const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
+  const std::string cmd = std::string(VOLSPLINE_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  auto slurp = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  test::TemporaryDirectory tmp;
+  std::filesystem::path dir() const { return tmp.path(); }
+  std::string write(const std::string& name, const std::string& text) {
+    const auto p = dir() / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  std::string model(const std::string& name, const BSplineVolume& v) {
+    Model m;
+    m.objects.push_back({"", false, v, nullptr});
+    const auto p = dir() / name;
+    write_model(m, p);
+    return p.string();
+  }
+  // Everything in the folder except our captured streams and the named inputs.
+  std::vector<std::string> outputs(const std::vector<std::string>& inputs) const {
+    std::vector<std::string> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir())) {
+      const auto name = e.path().filename().string();
+      if (name == "stdout.txt" || name == "stderr.txt") continue;
+      if (std::find(inputs.begin(), inputs.end(), name) != inputs.end()) continue;
+      files.push_back(name);
+    }
+    return files;
+  }
+};
+
+std::vector<double> numbers(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<double> v;
+  double x;
+  while (in >> x) v.push_back(x);
+  return v;
+}
+
+TEST_F(Cli, HelpOnEverySubcommand) {
+  for (const char* sub : {"", "info", "eval", "convert", "faces", "demo"}) {
+    const auto r = run(std::string(sub) + " --help", dir());
+    EXPECT_EQ(r.code, 0) << sub;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
+  }
+  EXPECT_EQ(run("", dir()).code, 2);            // a subcommand is required
+  EXPECT_EQ(run("no-such-command", dir()).code, 2);
+}
+
+TEST_F(Cli, EvalPrintsPointsAndDerivativesWith17Digits) {
+  const auto v = half_cylinder_shell(1.0, 2.0, 3.0);
+  const auto path = model("shell.json", v);
+  const auto r = run("eval " + path + " --at 0.25,0.5,0.75 --at 1,1,1 --derivatives", dir());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string line;
+  std::getline(lines, line);
+  const auto a = numbers(line);
+  ASSERT_EQ(a.size(), 12u);
+  const auto expected = v.evaluate_derivatives({0.25, 0.5, 0.75}, 1);
+  for (std::size_t i = 0; i < 12; ++i) EXPECT_EQ(a[i], expected[i]) << i;  // 17 digits: exact
+  EXPECT_NEAR(std::hypot(a[0], a[1]), 1.25, 1e-12);
+}
+
+TEST_F(Cli, EvalGridIsUFastestWithEndpoints) {
+  const auto v = bent_tricubic_volume();
+  const auto path = model("bent.json", v);
+  const auto r = run("eval " + path + " --grid 3,2,2", dir());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string line;
+  int n = 0;
+  while (std::getline(lines, line)) {
+    const double u = (n % 3) / 2.0, vv = (n / 3) % 2, w = n / 6;
+    const auto x = v.evaluate({u, vv, w});
+    const auto got = numbers(line);
+    ASSERT_EQ(got.size(), 3u);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(got[static_cast<std::size_t>(c)], x[c]);
+    ++n;
+  }
+  EXPECT_EQ(n, 12);
+}
+
+TEST_F(Cli, EvalOutsideTheDomainIsBadInput) {
+  const auto path = model("bent.json", bent_tricubic_volume());
+  const auto r = run("eval " + path + " --at 0.5,0.5,0.5 --at 0.5,1.5,0", dir());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--at[1]"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("outside the domain"), std::string::npos) << r.err;
+  EXPECT_EQ(run("eval " + path + " --at 0.5,0.5", dir()).code, 2);
+  EXPECT_EQ(run("eval " + path + " --at 0.5,x,0.5", dir()).code, 2);
+  EXPECT_EQ(run("eval " + path + " --at 0.5,0.5,0.5 --object 3", dir()).code, 2);
+}
+
+TEST_F(Cli, InfoJsonDescribesTheObjects) {
+  const auto path = model("shell.json", half_cylinder_shell(1.0, 2.0, 1.0));
+  const auto r = run("info --json " + path, dir());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& o = j["objects"][0];
+  EXPECT_EQ(o["degree"], nlohmann::json({1, 2, 1}));
+  EXPECT_EQ(o["control_points"], nlohmann::json({2, 3, 2}));
+  EXPECT_TRUE(o["rational"].get<bool>());
+  EXPECT_EQ(o["points_at_infinity"].get<int>(), 4);
+  // the box of the half shell is [-2, 2] x [0, 2] x [0, 1], up to the subdivided net
+  EXPECT_NEAR(o["bounding_box"]["max"][1].get<double>(), 2.0, 1e-2);
+  EXPECT_NEAR(o["bounding_box"]["min"][0].get<double>(), -2.0, 1e-12);
+  EXPECT_EQ(run("info " + path, dir()).code, 0);
+}
+
+TEST_F(Cli, ConvertKeepsTheGeometry) {
+  const auto v = bent_tricubic_volume();
+  const auto path = model("bent.json", v);
+  const auto out = (dir() / "pieces.json").string();
+  const auto r = run("convert " + path + " -o " + out + " --insert-knots w:0.3,0.6 --elevate u:1 --bezier", dir());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Model m = read_model(out);
+  // cells: u 3 spans, v 2, w 1 + 2 inserted
+  ASSERT_EQ(m.objects.size(), 3u * 2u * 3u);
+  EXPECT_EQ(object_type_name(m.objects[0]), "bezier_volume");
+  // cell 0 is [0,1/3] x [0,1/2] x [0,0.3] of the original, reparameterised to [0,1]^3
+  const auto& piece = std::get<BSplineVolume>(m.objects[0].spline);
+  EXPECT_EQ(piece.degrees()[0], 4);
+  for (double s : {0.0, 0.3, 0.8}) {
+    const auto a = piece.evaluate({s, s, s});
+    const auto b = v.evaluate({s / 3.0, s / 2.0, 0.3 * s});
+    EXPECT_LT((a - b).norm(), 1e-12);
+  }
+  EXPECT_EQ(run("convert " + path + " -o " + out + " --elevate q:1", dir()).code, 2);
+  EXPECT_EQ(run("convert " + path + " -o " + out + " --insert-knots u:7", dir()).code, 2);
+}
+
+TEST_F(Cli, FacesWritesAClosedMeshAndAPicture) {
+  const auto path = model("twisted.json", twisted_volume(0.25));
+  const auto ply = (dir() / "faces.ply").string(), png = (dir() / "faces.png").string();
+  const auto r = run("faces " + path + " -o " + ply + " --png " + png + " --resolution 8", dir());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("closed"), std::string::npos);
+  EXPECT_EQ(r.out.find("not closed"), std::string::npos);
+  EXPECT_GT(std::filesystem::file_size(ply), 100u);
+  std::ifstream in(png, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
+TEST_F(Cli, BadModelsGiveTheJsonPathAndExitCode2AndNoOutput) {
+  const std::string base = R"({"volspline": 1, "objects": [{"type": "bspline_volume", "degree": [1, 1, 1],
+      "knots": [[0, 0, 1, 1], [0, 0, 1, 1], [0, 0, KNOT, 1]], "control_points": POINTS WEIGHTS}]})";
+  const std::string cube = "[[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],[1,1,1]]";
+  auto make = [&](std::string knot, std::string points, std::string weights) {
+    std::string s = base;
+    s.replace(s.find("KNOT"), 4, knot);
+    s.replace(s.find("POINTS"), 6, points);
+    s.replace(s.find("WEIGHTS"), 7, weights);
+    return s;
+  };
+  struct Case {
+    std::string name, text, expect;
+  };
+  const std::vector<Case> cases{
+      {"not-json.json", "{\"volspline\": 1, \"objects\": [", "line"},
+      {"decreasing.json", make("1.5", cube, ""), "objects[0].knots[2][3]"},
+      {"count.json", make("1", "[[0,0,0],[1,0,0]]", ""), "objects[0].control_points"},
+      {"negative-weight.json", make("1", cube, ", \"weights\": [1,1,1,-1,1,1,1,1]"), "objects[0].weights[3]"},
+      {"infinite.json", make("1", "[[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1e999],[1,1,1]]", ""),
+       "objects[0].control_points[6][2]"},
+      {"empty.json", R"({"volspline": 1, "objects": []})", "objects"},
+  };
+  for (const auto& c : cases) {
+    const auto in = write(c.name, c.text);
+    for (const std::string& cmd : {"info " + in, "eval " + in + " --at 0,0,0", "faces " + in + " -o " + (dir() / "x.ply").string(),
+                                  "convert " + in + " -o " + (dir() / "x.json").string()}) {
+      const auto r = run(cmd, dir());
+      EXPECT_EQ(r.code, 2) << cmd << "\n" << r.err;
+      EXPECT_NE(r.err.find(c.name), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.name << ": " << r.err;
+      EXPECT_TRUE(r.out.empty()) << r.out;
+    }
+  }
+  std::vector<std::string> inputs;
+  for (const auto& c : cases) inputs.push_back(c.name);
+  EXPECT_TRUE(outputs(inputs).empty());
+  const auto missing = run("info " + (dir() / "missing.json").string(), dir());
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("missing.json"), std::string::npos);
+}
+
+TEST_F(Cli, UnwritableOutputLeavesNothingBehind) {
+  const auto path = model("bent.json", bent_tricubic_volume());
+  const auto r = run("faces " + path + " -o " + (dir() / "no-such-dir" / "f.ply").string(), dir());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(run("faces " + path + " -o " + (dir() / "f.xyz").string(), dir()).code, 2);
+  EXPECT_EQ(outputs({"bent.json"}).size(), 0u);
+}
+
+TEST_F(Cli, DemoWritesEveryExample) {
+  const auto out = dir() / "demo";
+  const auto r = run("demo --out " + out.string(), dir());
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* name : {"bent-tricubic", "twisted", "half-cylinder-shell"})
+    for (const char* ext : {".json", ".ply", ".png"}) EXPECT_TRUE(std::filesystem::exists(out / (std::string(name) + ext))) << name << ext;
+  // the demo's rational model has points at infinity and reads back
+  const Model m = read_model(out / "half-cylinder-shell.json");
+  const auto& v = std::get<BSplineVolume>(m.objects[0].spline);
+  EXPECT_TRUE(std::count(v.weights().begin(), v.weights().end(), 0.0) > 0);
+}
+
+}  // namespace
+}  // namespace volspline
