@@ -98,6 +98,17 @@ void BM_ScatteredTextbook(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(t.size()));
 }
 
+// The same scattered points through the parallel batch interface (all cores).
+void BM_ScatteredBatchParallel(benchmark::State& state) {
+  const int order = static_cast<int>(state.range(0));
+  const auto t = scattered(1 << 16);
+  for (auto _ : state) {
+    auto out = volume().evaluate_points(t, order);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(t.size()));
+}
+
 std::array<std::vector<double>, 3> grid(int n) {
   std::array<std::vector<double>, 3> s;
   for (auto& v : s)
@@ -135,6 +146,7 @@ void BM_GridTextbook(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_Scattered)->ArgName("order")->Arg(0)->Arg(1);
+BENCHMARK(BM_ScatteredBatchParallel)->ArgName("order")->Arg(0)->Arg(1)->UseRealTime();
 BENCHMARK(BM_ScatteredTextbook)->ArgName("order")->Arg(0)->Arg(1);
 BENCHMARK(BM_Grid)->ArgNames({"order", "n"})->Args({0, 64})->Args({1, 64})->Args({1, 128});
 BENCHMARK(BM_GridTextbook)->ArgNames({"order", "n"})->Args({0, 64})->Args({1, 64});

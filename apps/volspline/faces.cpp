@@ -1,6 +1,7 @@
 // volspline faces MODEL -o OUT.(ply|obj|stl) [--png IMAGE.png] [--resolution N] [--ascii]
 #include <iostream>
 
+#include "cli_support.h"
 #include "commands.h"
 #include "volspline/core/error.h"
 #include "volspline/io/model_file.h"
@@ -19,15 +20,22 @@ void add_faces_command(CLI::App& app) {
   auto png = std::make_shared<std::string>();
   auto resolution = std::make_shared<int>(24);
   auto ascii = std::make_shared<bool>(false);
+  auto edges = std::make_shared<bool>(false);
+  auto transparent = std::make_shared<bool>(false);
+  auto size = std::make_shared<std::string>("800,600");
   cmd->add_option("MODEL", *in, "model file")->required();
   cmd->add_option("-o,--output", *out, "mesh file: .ply (binary; x y z u v w, face part), .obj or .stl")->required();
   cmd->add_option("--png", *png, "also render a shaded picture of the faces");
   cmd->add_option("--resolution", *resolution, "segments per parameter direction, plus every knot (default 24)")->check(CLI::Range(1, 4096));
   cmd->add_flag("--ascii", *ascii, "write PLY or STL as text");
+  cmd->add_flag("--edges", *edges, "draw the triangle edges in the picture");
+  cmd->add_flag("--transparent", *transparent, "transparent picture background");
+  cmd->add_option("--size", *size, "picture size W,H in pixels (default 800,600)");
   cmd->callback([=] {
-    const auto format = mesh_format_from_path(*out);  // reject a bad extension before any work
+    mesh_format_from_path(*out);  // reject a bad extension before any work
     if (!png->empty() && std::filesystem::path(*png).extension() != ".png")
       throw InvalidInput("expected a file name ending in .png, got '" + *png + "'", "--png");
+    const auto wh = parse_integers(*size, 2, 16, "--size");
     const Model model = read_model(*in);
     TriangleMesh mesh;
     int volumes = 0;
@@ -39,13 +47,17 @@ void add_faces_command(CLI::App& app) {
     }
     if (volumes == 0) throw InvalidInput("the model has no volume objects (bspline_volume or bezier_volume)", *in);
     write_mesh(mesh, *out, {.ascii = *ascii});
-    (void)format;
     const auto stats = edge_statistics(mesh);
     std::cout << "wrote " << *out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles from "
               << volumes << " volume(s); " << (stats.closed() ? "closed" : "not closed") << " (" << stats.boundary_edges
               << " boundary, " << stats.nonmanifold_edges << " non-manifold edges)\n";
     if (!png->empty()) {
-      write_png(render_mesh(mesh, {}), *png);
+      RenderOptions options;
+      options.width = wh[0];
+      options.height = wh[1];
+      options.edges = *edges;
+      options.transparent_background = *transparent;
+      write_png(render_mesh(mesh, options), *png);
       std::cout << "wrote " << *png << "\n";
     }
   });

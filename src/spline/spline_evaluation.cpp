@@ -6,6 +6,10 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "derivative_table.h"
 #include "volspline/core/error.h"
@@ -341,6 +345,24 @@ void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double
 }
 
 template <int D>
+std::vector<double> TensorSpline<D>::evaluate_points(const std::vector<Parameter>& t, int order) const {
+  if (order < 0) throw InvalidInput("derivative order must be >= 0");
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    try {
+      check_in_domain(t[i]);
+    } catch (const InvalidInput& e) {
+      throw e.located("points[" + std::to_string(i) + "]");
+    }
+  }
+  const std::size_t row = detail::derivative_table<D>(order).alphas.size() * static_cast<std::size_t>(dimension_);
+  std::vector<double> out(t.size() * row);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, t.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) evaluate_derivatives(t[i], order, out.data() + i * row);
+  });
+  return out;
+}
+
+template <int D>
 std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>& samples, int order) const {
   std::size_t num_points = 1;
   for (const auto& s : samples) num_points *= s.size();
@@ -456,7 +478,8 @@ void TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>& sa
   template void TensorSpline<D>::evaluate_derivatives(const Parameter&, int, double*) const;         \
   template std::vector<double> TensorSpline<D>::evaluate_derivatives(const Parameter&, int) const;   \
   template std::vector<double> TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>&, int) const; \
-  template void TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>&, int, double*) const;
+  template void TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>&, int, double*) const; \
+  template std::vector<double> TensorSpline<D>::evaluate_points(const std::vector<Parameter>&, int) const;
 VOLSPLINE_INSTANTIATE_EVALUATION(1)
 VOLSPLINE_INSTANTIATE_EVALUATION(2)
 VOLSPLINE_INSTANTIATE_EVALUATION(3)

@@ -150,6 +150,25 @@ TEST(TensorSpline, GridEvaluationEqualsScatteredEvaluation) {
   check(random_spline<4>(rng, {1, 2, 1, 2}, 2, 2, false));
 }
 
+TEST(TensorSpline, ParallelBatchEqualsSingleEvaluation) {
+  std::mt19937 rng(14);
+  const auto s = random_spline<3>(rng, {3, 2, 3}, 3, 3, true, false, 2, true);
+  std::vector<std::array<double, 3>> t(5000);
+  for (auto& x : t) x = random_parameter(rng, s);
+  const auto batch = s.evaluate_points(t, 1);
+  for (std::size_t i = 0; i < t.size(); i += 97) {
+    const auto single = s.evaluate_derivatives(t[i], 1);
+    for (std::size_t j = 0; j < single.size(); ++j) EXPECT_EQ(batch[i * single.size() + j], single[j]);
+  }
+  t[4321][1] = 1e9;
+  try {
+    s.evaluate_points(t);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.where(), "points[4321]");
+  }
+}
+
 TEST(TensorSpline, RationalQuarterCircleIsExact) {
   const double r = std::sqrt(0.5);
   BSplineCurve arc({KnotVector::bezier(2)}, 2, {1, 0, 1, 1, 0, 1}, {1, r, 1});

@@ -82,6 +82,11 @@ class TensorSpline {
   void evaluate_derivatives(const Parameter& t, int order, double* out) const;
   std::vector<double> evaluate_derivatives(const Parameter& t, int order) const;
 
+  /// evaluate_derivatives at many scattered points, in parallel (oneTBB): out[(point *
+  /// num_multi_indices + alpha) * dimension + c]. \throw InvalidInput naming the first point
+  /// outside the domain ("points[i]").
+  std::vector<double> evaluate_points(const std::vector<Parameter>& t, int order = 0) const;
+
   /// Values and partial derivatives up to `order` on the tensor grid samples[0] x ... x
   /// samples[D-1], by sum factorisation (one direction at a time, never point by point).
   /// Layout: one block per derivative multi-index (derivative_multi_indices order), each block
