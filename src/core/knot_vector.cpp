@@ -38,6 +38,16 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : degree_(degree),
     throw InvalidInput("the domain [t_p, t_{m-p}] = [" + format_double(domain_min()) + ", " +
                        format_double(domain_max()) + "] is empty");
   }
+  const int per_span = degree_ * (degree_ + 1) / 2;
+  inverse_differences_.assign(static_cast<std::size_t>((num_basis() - degree_) * per_span), 0.0);
+  for (int span = degree_; span < num_basis(); ++span) {
+    if (knots_[static_cast<std::size_t>(span)] == knots_[static_cast<std::size_t>(span) + 1]) continue;  // empty: never used
+    double* inv = inverse_differences_.data() + static_cast<std::size_t>((span - degree_) * per_span);
+    for (int j = 1; j <= degree_; ++j)
+      for (int i = 0; i < j; ++i)
+        inv[j * (j - 1) / 2 + i] =
+            1.0 / (knots_[static_cast<std::size_t>(span + i + 1)] - knots_[static_cast<std::size_t>(span + 1 - j + i)]);
+  }
 }
 
 KnotVector KnotVector::bezier(int degree, double a, double b) {
@@ -66,20 +76,70 @@ bool KnotVector::is_bezier() const {
 
 int KnotVector::find_span(double t) const {
   const int n = num_basis();
-  if (t >= knots_[static_cast<std::size_t>(n)]) {
+  const double* k = knots_.data();
+  if (t >= k[n]) {
     // Upper end of the domain: the last nonempty span (closed at the top).
     int s = n - 1;
-    while (knots_[static_cast<std::size_t>(s)] == knots_[static_cast<std::size_t>(s) + 1]) --s;
+    while (k[s] == k[s + 1]) --s;
     return s;
   }
-  // upper_bound gives the first knot > t; the span starts one before it.
-  const auto first = knots_.begin() + degree_;
-  const auto last = knots_.begin() + n + 1;
-  const auto it = std::upper_bound(first, last, t);
-  return static_cast<int>(it - knots_.begin()) - 1;
+  // The largest s in [p, n-1] with t_s <= t; branch-free halving, since the comparison outcome
+  // is unpredictable for scattered parameters.
+  const double* base = k + degree_;
+  std::size_t len = static_cast<std::size_t>(n - degree_);
+  while (len > 1) {
+    const std::size_t half = len / 2;
+    base = (base[half] <= t) ? base + half : base;
+    len -= half;
+  }
+  return static_cast<int>(base - k);
 }
 
+namespace {
+
+// Cox-de Boor with the degree known at compile time, so that the triangle stays in registers
+// (the generic loop is bound by store-to-load latency through the output array).
+template <int P, bool WithDerivatives>
+void basis_fixed(const double* k, const double* inv, int span, double t, double* out) {
+  double N[P + 1], l[P + 1], r[P + 1];
+  N[0] = 1.0;
+  double quotients[P] = {};
+  for (int j = 1; j <= P; ++j) {
+    l[j] = t - k[span + 1 - j];
+    r[j] = k[span + j] - t;
+    double saved = 0.0;
+    const double* inv_j = inv + j * (j - 1) / 2;
+    for (int i = 0; i < j; ++i) {
+      const double q = N[i] * inv_j[i];
+      N[i] = saved + r[i + 1] * q;
+      saved = l[j - i] * q;
+      if (j == P) quotients[i] = q;
+    }
+    N[j] = saved;
+  }
+  for (int i = 0; i <= P; ++i) out[i] = N[i];
+  if constexpr (WithDerivatives) {
+    // d/dt N_{b,p} = p (N_{b,p-1} / (t_{b+p} - t_b) - N_{b+1,p-1} / (t_{b+p+1} - t_{b+1}))
+    for (int i = 0; i <= P; ++i) out[P + 1 + i] = P * ((i > 0 ? quotients[i - 1] : 0.0) - (i < P ? quotients[i] : 0.0));
+  }
+}
+
+template <bool WithDerivatives>
+bool dispatch_basis_fixed(int p, const double* k, const double* inv, int span, double t, double* out) {
+  switch (p) {
+    case 1: basis_fixed<1, WithDerivatives>(k, inv, span, t, out); return true;
+    case 2: basis_fixed<2, WithDerivatives>(k, inv, span, t, out); return true;
+    case 3: basis_fixed<3, WithDerivatives>(k, inv, span, t, out); return true;
+    case 4: basis_fixed<4, WithDerivatives>(k, inv, span, t, out); return true;
+    case 5: basis_fixed<5, WithDerivatives>(k, inv, span, t, out); return true;
+    default: return false;
+  }
+}
+
+}  // namespace
+
 void KnotVector::basis(int span, double t, double* N) const {
+  if (dispatch_basis_fixed<false>(degree_, knots_.data(), inverse_differences(span), span, t, N)) return;
   // Cox-de Boor triangle (Piegl & Tiller, The NURBS Book, A2.2), all in registers for small p.
   const int p = degree_;
   double left[32], right[32];
@@ -92,13 +152,15 @@ void KnotVector::basis(int span, double t, double* N) const {
     r = heap.data() + p + 1;
   }
   const double* k = knots_.data();
+  const double* inv = inverse_differences(span);
   N[0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     l[j] = t - k[span + 1 - j];
     r[j] = k[span + j] - t;
     double saved = 0.0;
+    const double* inv_j = inv + j * (j - 1) / 2;
     for (int i = 0; i < j; ++i) {
-      const double temp = N[i] / (r[i + 1] + l[j - i]);
+      const double temp = N[i] * inv_j[i];  // N[i] / (r[i + 1] + l[j - i])
       N[i] = saved + r[i + 1] * temp;
       saved = l[j - i] * temp;
     }
@@ -111,6 +173,7 @@ void KnotVector::basis_first_derivatives(int span, double t, double* values) con
   // length, N_{a,p-1} / (t_{a+p} - t_a); the derivative of a degree p function is p times the
   // difference of two such quotients (Piegl & Tiller eq. 2.7), so both come out of one pass.
   const int p = degree_;
+  if (dispatch_basis_fixed<true>(p, knots_.data(), inverse_differences(span), span, t, values)) return;
   double* N = values;
   double* dN = values + p + 1;
   if (p == 0) {
@@ -128,13 +191,15 @@ void KnotVector::basis_first_derivatives(int span, double t, double* values) con
     r = heap.data() + p + 1;
   }
   const double* k = knots_.data();
+  const double* inv = inverse_differences(span);
   N[0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     l[j] = t - k[span + 1 - j];
     r[j] = k[span + j] - t;
     double saved = 0.0, previous_quotient = 0.0;
+    const double* inv_j = inv + j * (j - 1) / 2;
     for (int i = 0; i < j; ++i) {
-      const double quotient = N[i] / (r[i + 1] + l[j - i]);
+      const double quotient = N[i] * inv_j[i];  // N[i] / (r[i + 1] + l[j - i])
       N[i] = saved + r[i + 1] * quotient;
       saved = l[j - i] * quotient;
       if (j == p) {

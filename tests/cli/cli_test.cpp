@@ -110,7 +110,7 @@ TEST_F(Cli, EvalGridIsUFastestWithEndpoints) {
     const auto x = v.evaluate({u, vv, w});
     const auto got = numbers(line);
     ASSERT_EQ(got.size(), 3u);
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(got[static_cast<std::size_t>(c)], x[c]);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[static_cast<std::size_t>(c)], x[c], 1e-14 * (1 + std::abs(x[c])));
     ++n;
   }
   EXPECT_EQ(n, 12);

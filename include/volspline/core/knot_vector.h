@@ -48,11 +48,19 @@ class KnotVector {
   /// Multiplicity of the knot value t (0 if t is not a knot).
   int multiplicity(double t) const;
 
-  friend bool operator==(const KnotVector&, const KnotVector&) = default;
+  friend bool operator==(const KnotVector& a, const KnotVector& b) {
+    return a.degree_ == b.degree_ && a.knots_ == b.knots_;
+  }
 
  private:
   int degree_;
   std::vector<double> knots_;
+  // 1 / (t_{s+i+1} - t_{s+1-j+i}) for every span s, j = 1..p, i < j: the denominators of the
+  // Cox-de Boor triangle depend on the knots only, and divisions dominate evaluation otherwise.
+  std::vector<double> inverse_differences_;
+  const double* inverse_differences(int span) const {
+    return inverse_differences_.data() + static_cast<std::size_t>(span - degree_) * static_cast<std::size_t>(degree_ * (degree_ + 1) / 2);
+  }
 };
 
 }  // namespace volspline
