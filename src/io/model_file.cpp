@@ -310,8 +310,8 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
     if (!value.is_number_integer()) fail("an integer degree", value, at);
     // nlohmann stores nonnegative integer literals as unsigned, negative ones as signed.
     if (!value.is_number_unsigned() || value.get<std::uint64_t>() < 1) fail("a degree of at least 1", value, at);
-    if (value.get<std::uint64_t>() > static_cast<std::uint64_t>(INT_MAX)) {
-      fail("a degree of at most " + std::to_string(INT_MAX), value, at);
+    if (value.get<std::uint64_t>() > static_cast<std::uint64_t>(kMaxModelDegree)) {
+      fail("a degree of at most " + std::to_string(kMaxModelDegree) + " (the limit of model files)", value, at);
     }
     degrees[d] = static_cast<int>(value.get<std::uint64_t>());
   }
@@ -543,7 +543,15 @@ bool is_unit_bezier(const KnotVector& kv) {
 }
 
 template <int D>
-void write_spline(std::ostringstream& out, const TensorSpline<D>& spline, bool bezier, const std::string& indent) {
+void write_spline(std::ostringstream& out, const TensorSpline<D>& spline, bool bezier, const std::string& indent,
+                  const std::string& path) {
+  for (int d = 0; d < D; ++d) {
+    if (spline.knot_vector(d).degree() > kMaxModelDegree) {
+      throw InvalidInput("expected a degree of at most " + std::to_string(kMaxModelDegree) +
+                             " (the limit of model files), got " + std::to_string(spline.knot_vector(d).degree()),
+                         index_path(key_path(path, "degree"), static_cast<std::size_t>(d)));
+    }
+  }
   out << indent << "\"degree\": [";
   for (int d = 0; d < D; ++d) out << (d ? ", " : "") << spline.knot_vector(d).degree();
   out << "]";
@@ -614,7 +622,7 @@ std::string model_to_json(const Model& model) {
     const std::string type = object_type_name(object);
     out << indent << "\"type\": \"" << type << "\",\n";
     const bool bezier = type.rfind("bezier_", 0) == 0;
-    std::visit([&](const auto& spline) { write_spline(out, spline, bezier, indent); }, object.spline);
+    std::visit([&](const auto& spline) { write_spline(out, spline, bezier, indent, path); }, object.spline);
     if (!object.metadata.is_null()) write_metadata(out, object.metadata, key_path(path, "metadata"), indent);
     out << "\n    }" << (i + 1 < model.objects.size() ? ",\n" : "\n");
   }

@@ -82,7 +82,6 @@ template const DerivativeTable<4>& derivative_table<4>(int);
 
 namespace {
 
-constexpr int kMaxDegreeOnStack = 15;
 
 // One contraction step of a local block along one direction (sum factorisation):
 //   out[r][row * len + x] = sum_k basis[r][k] * in[k * kstride + row_offset[row] + x]

@@ -178,26 +178,25 @@ TEST(ModelFile, RoundTripSpecialDoublesBitExact) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (int i = 0; i < 1000; ++i) values.push_back(unit(rng));
   if (values.size() % 2) values.push_back(0.5);
-  // A Bézier curve in R^2 whose control points are all these numbers; weights from the same
-  // pool, made positive.
-  const std::size_t n = values.size() / 2;
-  std::vector<double> weights(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    weights[i] = std::abs(values[i]);
-    if (weights[i] == 0.0 || i == 0) weights[i] = 1.0;
-  }
+  // A Bézier line segment in R^k whose two control points hold all these numbers.
+  const int k = static_cast<int>(values.size() / 2);
   Model model;
-  model.objects.push_back(
-      {"", true, TensorSpline<1>({KnotVector::bezier(static_cast<int>(n) - 1)}, 2, values, weights), nullptr});
-  // Knots: sorted random doubles.
+  model.objects.push_back({"", true, TensorSpline<1>({KnotVector::bezier(1)}, k, values), nullptr});
+  // A rational B-spline curve of degree 2 on random knots (sorted random doubles) with control
+  // points and weights from the same pool, weights made positive.
   std::vector<double> knots;
-  for (int i = 0; i < 40; ++i) knots.push_back(random_finite(rng));
+  for (int i = 0; i < 300; ++i) knots.push_back(random_finite(rng));
   knots.insert(knots.end(), {0.1, 1.0 / 3.0, 1e-300, 5e-324, -0.0});
   std::sort(knots.begin(), knots.end());
   knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
-  const int count = static_cast<int>(knots.size()) - 2;  // degree 1
-  std::vector<double> points(values.begin(), values.begin() + count);
-  model.objects.push_back({"", false, TensorSpline<1>({KnotVector(1, knots)}, 1, points), nullptr});
+  const std::size_t n = knots.size() - 3;
+  std::vector<double> points(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(n));
+  std::vector<double> weights(n);
+  for (std::size_t i = 0; i < n; ++i) weights[i] = std::abs(values[values.size() - 1 - i]);
+  for (double& w : weights)
+    if (w == 0.0) w = 1.0;
+  weights[n / 2] = 0.0;
+  model.objects.push_back({"", false, TensorSpline<1>({KnotVector(2, knots)}, 1, points, weights), nullptr});
   const std::string text = model_to_json(model);
   EXPECT_CONTAINS(text, "-0.0");
   const Model back = round_trip(model);
@@ -354,20 +353,42 @@ TEST(ModelFileErrors, Degrees) {
                   "expected an integer degree, got 1.5");
   EXPECT_CONTAINS(error_after([](json& d) { d["objects"][1]["degree"][1] = "1"; }, "objects[1].degree[1]"), "got the string");
   EXPECT_CONTAINS(error_after([](json& d) { d["objects"][1]["degree"][1] = 10000000000000ull; }, "objects[1].degree[1]"),
-                  "expected a degree of at most 2147483647");
+                  "expected a degree of at most 64 (the limit of model files), got 10000000000000");
+  EXPECT_CONTAINS(error_after([](json& d) { d["objects"][1]["degree"][1] = 65; }, "objects[1].degree[1]"), "at most 64");
 }
 
-TEST(ModelFileErrors, HugeDegreesAllocateNothing) {
+TEST(ModelFileErrors, HugeDegreesAndCountsAllocateNothing) {
+  EXPECT_CONTAINS(error_after([](json& d) { d["objects"][1]["degree"][1] = 1000000000; }, "objects[1].degree[1]"),
+                  "expected a degree of at most 64");
   // The degree is checked against the knot array before anything is sized by it.
-  EXPECT_CONTAINS(error_after([](json& d) { d["objects"][1]["degree"][1] = 1000000000; }, "objects[1].knots[1]"),
-                  "a knot vector of degree 1000000000 needs at least 2000000002 knots, got 4");
-  // Bézier degrees are checked against the number of control points.
-  EXPECT_CONTAINS(error_of(R"({"volspline": 1, "objects": [{"type": "bezier_curve", "degree": [2147483647],
+  EXPECT_CONTAINS(error_after([](json& d) { d["objects"][1]["degree"][1] = 64; }, "objects[1].knots[1]"),
+                  "a knot vector of degree 64 needs at least 130 knots, got 4");
+  // Bézier degrees are checked against the number of control points before knots are made.
+  EXPECT_CONTAINS(error_of(R"({"volspline": 1, "objects": [{"type": "bezier_volume", "degree": [64, 64, 64],
                                "control_points": [[0], [1]]}]})"),
-                  "model.json: objects[0].control_points: expected 2147483648 control points (from the degrees), got 2");
-  EXPECT_CONTAINS(error_of(R"({"volspline": 1, "objects": [{"type": "bezier_volume", "degree": [1000000, 1000000, 1000000],
-                               "control_points": [[0], [1]]}]})"),
-                  "model.json: objects[0].control_points: expected 1000001 x 1000001 x 1000001 control points (from the degrees), got 2");
+                  "model.json: objects[0].control_points: expected 274625 control points (65 x 65 x 65 from the degrees), got 2");
+  // Control-point grids beyond any int are reported, not multiplied out.
+  json knots = json::array();
+  for (int i = 0; i < 2000; ++i) knots.push_back(i);
+  EXPECT_CONTAINS(error_after([&](json& d) { d["objects"][1]["knots"] = {knots, knots, knots}; }, "objects[1].control_points"),
+                  "expected 1998 x 1998 x 1998 control points (from the degrees and knots), got 8");
+}
+
+TEST(ModelFile, DegreesAboveTheLimitAreNotWritten) {
+  ModelObject object{"", true, TensorSpline<1>({KnotVector::bezier(kMaxModelDegree + 1)}, 1,
+                                               std::vector<double>(static_cast<std::size_t>(kMaxModelDegree + 2), 1.0)),
+                     nullptr};
+  try {
+    model_to_json(Model{{object}, nullptr});
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.where(), "objects[0].degree[0]");
+  }
+  // The largest allowed degree round-trips.
+  object.spline = TensorSpline<1>({KnotVector::bezier(kMaxModelDegree)}, 2,
+                                  std::vector<double>(static_cast<std::size_t>(2 * (kMaxModelDegree + 1)), 0.5),
+                                  std::vector<double>(static_cast<std::size_t>(kMaxModelDegree + 1), 1.0));
+  round_trip(Model{{object}, nullptr});
 }
 
 TEST(ModelFileErrors, Knots) {

@@ -39,6 +39,11 @@ struct Model {
 /// The format version this library reads and writes.
 inline constexpr int kModelFormatVersion = 1;
 
+/// The highest degree a model file may give in any direction. Checking a rational spline costs
+/// O(p^2) per knot span, so unbounded degrees would let a small file keep the reader busy for
+/// minutes; CAD systems stay far below (OpenCASCADE's limit is 25).
+inline constexpr int kMaxModelDegree = 64;
+
 /// Parses the text of a model file. `source_name` (usually the file name) starts every error
 /// message. \throw InvalidInput whose what() reads "SOURCE: JSON.PATH: what was expected, got
 /// what" (for example "model.json: objects[0].knots[1][3]: knots must not decrease: 0.2 follows
