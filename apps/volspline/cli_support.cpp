@@ -22,34 +22,34 @@ std::vector<std::string> split_commas(const std::string& text) {
 
 }  // namespace
 
-std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& option) {
+namespace {
+
+// "A,B,C" into exactly `count` values accepted by `valid`; `what` names the expected kind.
+template <class T, class Valid>
+std::vector<T> parse_list(const std::string& text, std::size_t count, const std::string& option, const std::string& what,
+                          Valid valid) {
   const auto parts = split_commas(text);
   if (parts.size() != count)
-    throw InvalidInput("expected " + std::to_string(count) + " comma-separated numbers, got '" + text + "'", option);
-  std::vector<double> values;
+    throw InvalidInput("expected " + std::to_string(count) + " comma-separated values, got '" + text + "'", option);
+  std::vector<T> values;
   for (const auto& part : parts) {
-    double x = 0.0;
+    T x{};
     const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), x);
-    if (ec != std::errc() || end != part.data() + part.size() || !std::isfinite(x))
-      throw InvalidInput("expected a finite number, got '" + part + "' in '" + text + "'", option);
+    if (ec != std::errc() || end != part.data() + part.size() || !valid(x))
+      throw InvalidInput("expected " + what + ", got '" + part + "' in '" + text + "'", option);
     values.push_back(x);
   }
   return values;
 }
 
+}  // namespace
+
+std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& option) {
+  return parse_list<double>(text, count, option, "a finite number", [](double x) { return std::isfinite(x); });
+}
+
 std::vector<int> parse_integers(const std::string& text, std::size_t count, int minimum, const std::string& option) {
-  const auto parts = split_commas(text);
-  if (parts.size() != count)
-    throw InvalidInput("expected " + std::to_string(count) + " comma-separated integers, got '" + text + "'", option);
-  std::vector<int> values;
-  for (const auto& part : parts) {
-    int x = 0;
-    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), x);
-    if (ec != std::errc() || end != part.data() + part.size() || x < minimum)
-      throw InvalidInput("expected an integer >= " + std::to_string(minimum) + ", got '" + part + "'", option);
-    values.push_back(x);
-  }
-  return values;
+  return parse_list<int>(text, count, option, "an integer >= " + std::to_string(minimum), [&](int x) { return x >= minimum; });
 }
 
 int parse_direction(const std::string& text, const std::string& option) {

@@ -97,119 +97,66 @@ int KnotVector::find_span(double t) const {
 
 namespace {
 
-// Cox-de Boor with the degree known at compile time, so that the triangle stays in registers
-// (the generic loop is bound by store-to-load latency through the output array).
-template <int P, bool WithDerivatives>
-void basis_fixed(const double* k, const double* inv, int span, double t, double* out) {
-  double N[P + 1], l[P + 1], r[P + 1];
+// The Cox-de Boor triangle (Piegl & Tiller A2.2) with the reciprocal knot differences
+// precomputed. Its last step divides each degree p-1 function by its support length,
+// N_{a,p-1} / (t_{a+p} - t_a); the derivative of a degree p function is p times the difference of
+// two such quotients (Piegl & Tiller eq. 2.7), so values and first derivatives come from one
+// pass. Instantiated with a compile-time degree (Fixed > 0) for the common degrees, so that the
+// triangle stays in registers: the generic loop is bound by store-to-load latency.
+template <int Fixed, bool WithDerivatives>
+void cox_de_boor(const double* k, const double* inv, int span, double t, int runtime_degree, double* out) {
+  const int p = Fixed > 0 ? Fixed : runtime_degree;
+  constexpr int kStack = Fixed > 0 ? Fixed + 1 : 33;
+  double stack[4 * kStack];
+  std::vector<double> heap;
+  double* N = stack;
+  if (p + 1 > kStack) {
+    heap.resize(4 * static_cast<std::size_t>(p + 1));
+    N = heap.data();
+  }
+  double* l = N + (p + 1);
+  double* r = l + (p + 1);
+  double* quotients = r + (p + 1);
   N[0] = 1.0;
-  double quotients[P] = {};
-  for (int j = 1; j <= P; ++j) {
+  for (int j = 1; j <= p; ++j) {
     l[j] = t - k[span + 1 - j];
     r[j] = k[span + j] - t;
     double saved = 0.0;
     const double* inv_j = inv + j * (j - 1) / 2;
     for (int i = 0; i < j; ++i) {
-      const double q = N[i] * inv_j[i];
+      const double q = N[i] * inv_j[i];  // N[i] / (r[i + 1] + l[j - i])
       N[i] = saved + r[i + 1] * q;
       saved = l[j - i] * q;
-      if (j == P) quotients[i] = q;
+      if (j == p) quotients[i] = q;
     }
     N[j] = saved;
   }
-  for (int i = 0; i <= P; ++i) out[i] = N[i];
+  for (int i = 0; i <= p; ++i) out[i] = N[i];
   if constexpr (WithDerivatives) {
-    // d/dt N_{b,p} = p (N_{b,p-1} / (t_{b+p} - t_b) - N_{b+1,p-1} / (t_{b+p+1} - t_{b+1}))
-    for (int i = 0; i <= P; ++i) out[P + 1 + i] = P * ((i > 0 ? quotients[i - 1] : 0.0) - (i < P ? quotients[i] : 0.0));
+    for (int i = 0; i <= p; ++i) out[p + 1 + i] = p * ((i > 0 ? quotients[i - 1] : 0.0) - (i < p ? quotients[i] : 0.0));
   }
 }
 
 template <bool WithDerivatives>
-bool dispatch_basis_fixed(int p, const double* k, const double* inv, int span, double t, double* out) {
+void basis_any_degree(int p, const double* k, const double* inv, int span, double t, double* out) {
   switch (p) {
-    case 1: basis_fixed<1, WithDerivatives>(k, inv, span, t, out); return true;
-    case 2: basis_fixed<2, WithDerivatives>(k, inv, span, t, out); return true;
-    case 3: basis_fixed<3, WithDerivatives>(k, inv, span, t, out); return true;
-    case 4: basis_fixed<4, WithDerivatives>(k, inv, span, t, out); return true;
-    case 5: basis_fixed<5, WithDerivatives>(k, inv, span, t, out); return true;
-    default: return false;
+    case 1: return cox_de_boor<1, WithDerivatives>(k, inv, span, t, p, out);
+    case 2: return cox_de_boor<2, WithDerivatives>(k, inv, span, t, p, out);
+    case 3: return cox_de_boor<3, WithDerivatives>(k, inv, span, t, p, out);
+    case 4: return cox_de_boor<4, WithDerivatives>(k, inv, span, t, p, out);
+    case 5: return cox_de_boor<5, WithDerivatives>(k, inv, span, t, p, out);
+    default: return cox_de_boor<0, WithDerivatives>(k, inv, span, t, p, out);
   }
 }
 
 }  // namespace
 
 void KnotVector::basis(int span, double t, double* N) const {
-  if (dispatch_basis_fixed<false>(degree_, knots_.data(), inverse_differences(span), span, t, N)) return;
-  // Cox-de Boor triangle (Piegl & Tiller, The NURBS Book, A2.2), all in registers for small p.
-  const int p = degree_;
-  double left[32], right[32];
-  double* l = left;
-  double* r = right;
-  std::vector<double> heap;
-  if (p >= 32) {
-    heap.resize(2 * static_cast<std::size_t>(p + 1));
-    l = heap.data();
-    r = heap.data() + p + 1;
-  }
-  const double* k = knots_.data();
-  const double* inv = inverse_differences(span);
-  N[0] = 1.0;
-  for (int j = 1; j <= p; ++j) {
-    l[j] = t - k[span + 1 - j];
-    r[j] = k[span + j] - t;
-    double saved = 0.0;
-    const double* inv_j = inv + j * (j - 1) / 2;
-    for (int i = 0; i < j; ++i) {
-      const double temp = N[i] * inv_j[i];  // N[i] / (r[i + 1] + l[j - i])
-      N[i] = saved + r[i + 1] * temp;
-      saved = l[j - i] * temp;
-    }
-    N[j] = saved;
-  }
+  basis_any_degree<false>(degree_, knots_.data(), inverse_differences(span), span, t, N);
 }
 
 void KnotVector::basis_first_derivatives(int span, double t, double* values) const {
-  // The last step of the Cox-de Boor triangle divides each degree p-1 function by its support
-  // length, N_{a,p-1} / (t_{a+p} - t_a); the derivative of a degree p function is p times the
-  // difference of two such quotients (Piegl & Tiller eq. 2.7), so both come out of one pass.
-  const int p = degree_;
-  if (dispatch_basis_fixed<true>(p, knots_.data(), inverse_differences(span), span, t, values)) return;
-  double* N = values;
-  double* dN = values + p + 1;
-  if (p == 0) {
-    N[0] = 1.0;
-    dN[0] = 0.0;
-    return;
-  }
-  double left[32], right[32];
-  std::vector<double> heap;
-  double* l = left;
-  double* r = right;
-  if (p >= 32) {
-    heap.resize(2 * static_cast<std::size_t>(p + 1));
-    l = heap.data();
-    r = heap.data() + p + 1;
-  }
-  const double* k = knots_.data();
-  const double* inv = inverse_differences(span);
-  N[0] = 1.0;
-  for (int j = 1; j <= p; ++j) {
-    l[j] = t - k[span + 1 - j];
-    r[j] = k[span + j] - t;
-    double saved = 0.0, previous_quotient = 0.0;
-    const double* inv_j = inv + j * (j - 1) / 2;
-    for (int i = 0; i < j; ++i) {
-      const double quotient = N[i] * inv_j[i];  // N[i] / (r[i + 1] + l[j - i])
-      N[i] = saved + r[i + 1] * quotient;
-      saved = l[j - i] * quotient;
-      if (j == p) {
-        dN[i] = p * (previous_quotient - quotient);
-        previous_quotient = quotient;
-      }
-    }
-    N[j] = saved;
-    if (j == p) dN[p] = p * previous_quotient;
-  }
+  basis_any_degree<true>(degree_, knots_.data(), inverse_differences(span), span, t, values);
 }
 
 void KnotVector::basis_derivatives(int span, double t, int order, double* values) const {
