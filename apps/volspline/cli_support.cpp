@@ -32,11 +32,18 @@ std::vector<T> parse_list(const std::string& text, std::size_t count, const std:
   if (parts.size() != count)
     throw InvalidInput("expected " + std::to_string(count) + " comma-separated values, got '" + text + "'", option);
   std::vector<T> values;
-  for (const auto& part : parts) {
+  for (const auto& raw : parts) {
+    // from_chars accepts neither spaces nor a leading '+', which people type.
+    const auto first = raw.find_first_not_of(" \t");
+    const auto last = raw.find_last_not_of(" \t");
+    std::string part = first == std::string::npos ? std::string() : raw.substr(first, last - first + 1);
+    if (part.size() > 1 && part[0] == '+') part.erase(0, 1);
     T x{};
     const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), x);
+    if (ec == std::errc::result_out_of_range)
+      throw InvalidInput("'" + raw + "' is out of the range of a double", option);
     if (ec != std::errc() || end != part.data() + part.size() || !valid(x))
-      throw InvalidInput("expected " + what + ", got '" + part + "' in '" + text + "'", option);
+      throw InvalidInput("expected " + what + ", got '" + raw + "' in '" + text + "'", option);
     values.push_back(x);
   }
   return values;

@@ -7,6 +7,7 @@
 #include "volspline/spline/bezier_extraction.h"
 #include "volspline/spline/degree_elevation.h"
 #include "volspline/spline/knot_insertion.h"
+#include "volspline/spline/reparameterization.h"
 
 namespace volspline::cli {
 
@@ -53,7 +54,8 @@ void add_convert_command(CLI::App& app) {
     result.metadata = model.metadata;
     for (std::size_t i = 0; i < model.objects.size(); ++i) {
       ModelObject& object = model.objects[i];
-      const std::string where = "objects[" + std::to_string(i) + "]";
+      const std::string where = *in + ": objects[" + std::to_string(i) + "]";
+      try {
       std::visit(
           [&](auto& s) {
             using Spline = std::decay_t<decltype(s)>;
@@ -62,11 +64,7 @@ void add_convert_command(CLI::App& app) {
                 throw InvalidInput("direction " + std::to_string(step.direction) + " does not exist for a " +
                                        object_type_name(object),
                                    where);
-              try {
-                s = step.times ? elevate_degree(s, step.direction, step.times) : refine_knots(s, step.direction, step.knots);
-              } catch (const InvalidInput& e) {
-                throw e.located(where);
-              }
+              s = step.times ? elevate_degree(s, step.direction, step.times) : refine_knots(s, step.direction, step.knots);
             }
             if (!*bezier) {
               object.bezier = object.bezier && std::all_of(s.knot_vectors().begin(), s.knot_vectors().end(),
@@ -76,17 +74,15 @@ void add_convert_command(CLI::App& app) {
             }
             const auto pieces = bezier_pieces(s);
             for (std::size_t c = 0; c < pieces.size(); ++c) {
-              // A Bézier piece is the same control net on [0,1]^D (affine reparameterisation).
-              auto knots = pieces[c].knot_vectors();
-              for (auto& k : knots) k = KnotVector::bezier(k.degree());
               ModelObject piece{object.name.empty() ? "" : object.name + " cell " + std::to_string(c), true,
-                                Spline::from_homogeneous(knots, pieces[c].dimension(), pieces[c].is_rational(),
-                                                         pieces[c].homogeneous()),
-                                object.metadata};
+                                reparameterize_to_unit_box(pieces[c]), object.metadata};
               result.objects.push_back(std::move(piece));
             }
           },
           object.spline);
+      } catch (const InvalidInput& e) {
+        throw e.located(where);
+      }
     }
     write_model(result, *out);
     std::cout << "wrote " << *out << " (" << result.objects.size() << " object(s))\n";

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "volspline/core/error.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/face_tessellation.h"
@@ -19,7 +20,9 @@ void add_demo_command(CLI::App& app) {
   auto dir = std::make_shared<std::string>("out/demo");
   cmd->add_option("--out", *dir, "output folder (created if missing; default out/demo)");
   cmd->callback([=] {
-    std::filesystem::create_directories(*dir);
+    std::error_code ec;
+    std::filesystem::create_directories(*dir, ec);
+    if (ec || !std::filesystem::is_directory(*dir)) throw IoError("cannot create the output folder '" + *dir + "': " + ec.message());
     struct Example {
       std::string name, description;
       BSplineVolume volume;

@@ -16,6 +16,7 @@ struct EvalRequest {
   std::size_t object = 0;
   bool derivatives = false;
   bool json = false;
+  std::string location;  // "FILE: objects[i]" for error messages
 };
 
 // Values (and first partials) of one object at the requested points, one row per point:
@@ -28,6 +29,9 @@ std::vector<std::vector<double>> evaluate_rows(const TensorSpline<D>& s, const E
   std::vector<std::vector<double>> rows;
   if (!r.grid.empty()) {
     const auto n = parse_integers(r.grid, D, 2, "--grid");
+    double requested = 1.0;
+    for (int x : n) requested *= x;
+    if (requested > 5e7) throw InvalidInput("expected at most 50 million grid points, got '" + r.grid + "'", "--grid");
     std::array<std::vector<double>, D> samples;
     std::size_t total = 1;
     for (int d = 0; d < D; ++d) {
@@ -48,7 +52,7 @@ std::vector<std::vector<double>> evaluate_rows(const TensorSpline<D>& s, const E
     }
   }
   for (std::size_t i = 0; i < r.at.size(); ++i) {
-    const std::string where = "--at[" + std::to_string(i) + "]";
+    const std::string where = r.location + " at --at[" + std::to_string(i) + "]";
     const auto t = parse_numbers(r.at[i], D, where);
     std::array<double, D> param{};
     std::copy(t.begin(), t.end(), param.begin());
@@ -83,6 +87,7 @@ void add_eval_command(CLI::App& app) {
                              std::to_string(model.objects.size()) + " object(s)",
                          "--object");
     const auto& object = model.objects[r->object];
+    r->location = *model_path + ": objects[" + std::to_string(r->object) + "]";
     const int k = std::visit([](const auto& s) { return s.dimension(); }, object.spline);
     const auto rows = std::visit([&](const auto& s) { return evaluate_rows(s, *r); }, object.spline);
     if (r->json) {

@@ -1,9 +1,11 @@
 // volspline faces MODEL -o OUT.(ply|obj|stl) [--png IMAGE.png] [--resolution N] [--ascii]
 #include <iostream>
+#include <optional>
 
 #include "cli_support.h"
 #include "commands.h"
 #include "volspline/core/error.h"
+#include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
@@ -26,40 +28,53 @@ void add_faces_command(CLI::App& app) {
   cmd->add_option("MODEL", *in, "model file")->required();
   cmd->add_option("-o,--output", *out, "mesh file: .ply (binary; x y z u v w, face part), .obj or .stl")->required();
   cmd->add_option("--png", *png, "also render a shaded picture of the faces");
-  cmd->add_option("--resolution", *resolution, "segments per parameter direction, plus every knot (default 24)")->check(CLI::Range(1, 4096));
+  cmd->add_option("--resolution", *resolution, "segments per parameter direction, plus every knot (default 24)")->check(CLI::Range(1, 1024));
   cmd->add_flag("--ascii", *ascii, "write PLY or STL as text");
   cmd->add_flag("--edges", *edges, "draw the triangle edges in the picture");
   cmd->add_flag("--transparent", *transparent, "transparent picture background");
   cmd->add_option("--size", *size, "picture size W,H in pixels (default 800,600)");
   cmd->callback([=] {
-    mesh_format_from_path(*out);  // reject a bad extension before any work
+    const MeshFormat format = mesh_format_from_path(*out);  // reject a bad extension before any work
     if (!png->empty() && std::filesystem::path(*png).extension() != ".png")
       throw InvalidInput("expected a file name ending in .png, got '" + *png + "'", "--png");
     const auto wh = parse_integers(*size, 2, 16, "--size");
+    if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + *size + "'", "--size");
     const Model model = read_model(*in);
     TriangleMesh mesh;
     int volumes = 0;
-    for (const auto& object : model.objects) {
-      if (const auto* v = std::get_if<BSplineVolume>(&object.spline)) {
-        mesh.append(tessellate_faces(*v, {.resolution = *resolution}));
+    for (std::size_t i = 0; i < model.objects.size(); ++i) {
+      if (const auto* v = std::get_if<BSplineVolume>(&model.objects[i].spline)) {
+        try {
+          mesh.append(tessellate_faces(*v, {.resolution = *resolution}));
+        } catch (const InvalidInput& e) {
+          throw e.located(*in + ": objects[" + std::to_string(i) + "]");
+        }
         ++volumes;
       }
     }
     if (volumes == 0) throw InvalidInput("the model has no volume objects (bspline_volume or bezier_volume)", *in);
-    write_mesh(mesh, *out, {.ascii = *ascii});
-    const auto stats = edge_statistics(mesh);
-    std::cout << "wrote " << *out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles from "
-              << volumes << " volume(s); " << (stats.closed() ? "closed" : "not closed") << " (" << stats.boundary_edges
-              << " boundary, " << stats.nonmanifold_edges << " non-manifold edges)\n";
+    // Both outputs are prepared and opened before either is committed, so a failure on the
+    // picture (a missing folder, say) leaves no mesh file behind either.
+    AtomicFile mesh_file(*out);
+    mesh_file.stream() << mesh_bytes(mesh, format, {.ascii = *ascii});
+    std::optional<AtomicFile> png_file;
     if (!png->empty()) {
       RenderOptions options;
       options.width = wh[0];
       options.height = wh[1];
       options.edges = *edges;
       options.transparent_background = *transparent;
-      write_png(render_mesh(mesh, options), *png);
-      std::cout << "wrote " << *png << "\n";
+      const std::string bytes = png_bytes(render_mesh(mesh, options));
+      png_file.emplace(*png);
+      png_file->stream() << bytes;
     }
+    mesh_file.commit();
+    if (png_file) png_file->commit();
+    const auto stats = edge_statistics(mesh);
+    std::cout << "wrote " << *out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles from "
+              << volumes << " volume(s); " << (stats.closed() ? "closed" : "not closed") << " (" << stats.boundary_edges
+              << " boundary, " << stats.nonmanifold_edges << " non-manifold edges)\n";
+    if (png_file) std::cout << "wrote " << *png << "\n";
   });
 }
 

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <new>
 
 #include "commands.h"
 #include "volspline/core/error.h"
@@ -14,6 +15,9 @@ int main(int argc, char** argv) {
   volspline::cli::add_eval_command(app);
   volspline::cli::add_convert_command(app);
   volspline::cli::add_faces_command(app);
+  volspline::cli::add_make_command(app);
+  volspline::cli::add_ffd_command(app);
+  volspline::cli::add_lattice_command(app);
   volspline::cli::add_demo_command(app);
   try {
     app.parse(argc, argv);
@@ -32,6 +36,9 @@ int main(int argc, char** argv) {
   } catch (const volspline::IoError& e) {
     std::cerr << "volspline: error: " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "volspline: internal error: out of memory\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "volspline: internal error: " << e.what() << "\n";
     return 1;

@@ -95,6 +95,13 @@ int KnotVector::find_span(double t) const {
   return static_cast<int>(base - k);
 }
 
+int KnotVector::find_span_left(double t) const {
+  if (t <= domain_min()) return find_span(t);
+  const auto first_not_below = std::lower_bound(knots_.begin(), knots_.end(), t);
+  int s = static_cast<int>(first_not_below - knots_.begin()) - 1;  // last knot < t
+  return std::clamp(s, degree_, num_basis() - 1);
+}
+
 namespace {
 
 // The Cox-de Boor triangle (Piegl & Tiller A2.2) with the reciprocal knot differences

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <string>
 
 #include "volspline/core/conventions.h"
 #include "volspline/core/error.h"
@@ -32,6 +33,11 @@ std::vector<double> face_samples(const KnotVector& knots, int resolution) {
 }
 
 TriangleMesh tessellate_faces(const BSplineVolume& volume, const FaceTessellationOptions& options) {
+  if (volume.dimension() != 3) {
+    throw InvalidInput("boundary faces need control points in R^3, got " + std::to_string(volume.dimension()) +
+                           " coordinates per point",
+                       "control_points");
+  }
   std::array<std::vector<double>, 3> samples;
   for (int d = 0; d < 3; ++d) samples[static_cast<std::size_t>(d)] = face_samples(volume.knot_vector(d), options.resolution);
 

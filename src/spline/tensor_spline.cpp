@@ -1,5 +1,6 @@
 #include "volspline/spline/tensor_spline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -103,8 +104,13 @@ TensorSpline<D>::TensorSpline(FromHomogeneous, std::array<KnotVector, D> knots, 
   }
   points_.resize(n * k);
   weights_.resize(n);
+  double scale = 0.0;
+  for (std::size_t i = 0; i < n; ++i) scale = std::max(scale, std::abs(coefficients[i * c_size + k]));
   for (std::size_t i = 0; i < n; ++i) {
-    const double* h = &coefficients[i * c_size];
+    double* h = &coefficients[i * c_size];
+    // Algorithms that combine weights with cancellation (knot removal inside degree elevation)
+    // can leave -1e-16-sized results where the exact weight is 0: treat those as 0.
+    if (h[k] < 0.0 && h[k] >= -1e-9 * scale) h[k] = 0.0;
     const double w = h[k];
     if (w < 0.0) throw InvalidInput("a homogeneous weight is negative: " + format_double(w), "weights" + index_text(i));
     weights_[i] = w;
@@ -143,13 +149,16 @@ void TensorSpline<D>::validate_weights() const {
     const int p = kv.degree();
     std::vector<double> basis(static_cast<std::size_t>(p + 1));
     for (double t : kv.breakpoints()) {
-      const int span = kv.find_span(t);
-      kv.basis(span, t, basis.data());
-      std::vector<int> nonzero;
-      for (int j = 0; j <= p; ++j)
-        if (basis[static_cast<std::size_t>(j)] != 0.0) nonzero.push_back(span - p + j);
-      support[static_cast<std::size_t>(d)].push_back(std::move(nonzero));
-      where[static_cast<std::size_t>(d)].push_back(t);
+      // Both one-sided limits: at a knot of multiplicity p + 1 the spline is discontinuous and
+      // the piece on the left ends with control points that the right limit never sees.
+      for (const int span : {kv.find_span(t), kv.find_span_left(t)}) {
+        kv.basis(span, t, basis.data());
+        std::vector<int> nonzero;
+        for (int j = 0; j <= p; ++j)
+          if (basis[static_cast<std::size_t>(j)] != 0.0) nonzero.push_back(span - p + j);
+        support[static_cast<std::size_t>(d)].push_back(std::move(nonzero));
+        where[static_cast<std::size_t>(d)].push_back(t);
+      }
     }
   }
   Index combo{};

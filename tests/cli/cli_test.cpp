@@ -201,6 +201,11 @@ TEST_F(Cli, BadModelsGiveTheJsonPathAndExitCode2AndNoOutput) {
       {"infinite.json", make("1", "[[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1e999],[1,1,1]]", ""),
        "objects[0].control_points[6][2]"},
       {"empty.json", R"({"volspline": 1, "objects": []})", "objects"},
+      {"multiplicity.json", make("0", cube, ""),
+       "objects[0].knots[2][2]"},
+      {"degree.json", R"({"volspline": 1, "objects": [{"type": "bezier_curve", "degree": [0], "control_points": [[0,0,0]]}]})",
+       "objects[0].degree[0]"},
+      {"nan.json", make("1", "[[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,NaN],[1,1,1]]", ""), "line"},
   };
   for (const auto& c : cases) {
     const auto in = write(c.name, c.text);
@@ -226,7 +231,30 @@ TEST_F(Cli, UnwritableOutputLeavesNothingBehind) {
   const auto r = run("faces " + path + " -o " + (dir() / "no-such-dir" / "f.ply").string(), dir());
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(run("faces " + path + " -o " + (dir() / "f.xyz").string(), dir()).code, 2);
+  // the picture fails after the mesh is made: neither file may remain
+  const auto ply = (dir() / "f.ply").string();
+  EXPECT_EQ(run("faces " + path + " -o " + ply + " --png " + (dir() / "no-such-dir" / "p.png").string(), dir()).code, 2);
+  EXPECT_EQ(run("faces " + path + " -o " + ply + " --png " + (dir() / "p.png").string() + " --size 100000,100000", dir()).code, 2);
   EXPECT_EQ(outputs({"bent.json"}).size(), 0u);
+  EXPECT_EQ(run("demo --out " + path + "/sub", dir()).code, 2);  // the parent is a file
+  EXPECT_EQ(run("eval " + path + " --grid 100000,100000,100000", dir()).code, 2);
+}
+
+TEST_F(Cli, FacesNeedPointsInSpace) {
+  const auto in = write("planar.json", R"({"volspline": 1, "objects": [{"type": "bezier_volume", "degree": [1, 1, 1],
+      "control_points": [[0,0],[1,0],[0,1],[1,1],[0,0],[1,0],[0,1],[1,1]]}]})");
+  const auto r = run("faces " + in + " -o " + (dir() / "f.ply").string(), dir());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("planar.json: objects[0].control_points"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir() / "f.ply"));
+}
+
+TEST_F(Cli, OutsideTheDomainNamesFileObjectAndPoint) {
+  const auto path = model("bent.json", bent_tricubic_volume());
+  const auto r = run("eval " + path + " --at 0.5,0.5,1.5", dir());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("bent.json: objects[0] at --at[0]"), std::string::npos) << r.err;
+  EXPECT_EQ(run("eval " + path + " --at +0.5,0.5,0.25", dir()).code, 0);
 }
 
 TEST_F(Cli, DemoWritesEveryExample) {

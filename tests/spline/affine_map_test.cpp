@@ -75,3 +75,49 @@ TEST(BoundingBox, ContainsTheSpline) {
 
 }  // namespace
 }  // namespace volspline
+
+namespace volspline {
+namespace {
+
+TEST(BoundingBox, SubdividedBoxIsTightForUnclampedAndLongRunsOfPointsAtInfinity) {
+  std::mt19937 rng(72);
+  // unclamped: control points outside the domain must not widen the subdivided box
+  const auto s = testing::random_spline<2>(rng, {3, 2}, 3, 2, true, false);
+  const auto [lo, hi] = bounding_box(s, 3);
+  Eigen::Vector2d slo = Eigen::Vector2d::Constant(1e300), shi = -slo;
+  for (int i = 0; i <= 60; ++i)
+    for (int j = 0; j <= 60; ++j) {
+      const auto x = s.evaluate({s.domain_min(0) + (s.domain_max(0) - s.domain_min(0)) * i / 60.0,
+                                 s.domain_min(1) + (s.domain_max(1) - s.domain_min(1)) * j / 60.0});
+      slo = slo.cwiseMin(x);
+      shi = shi.cwiseMax(x);
+    }
+  const double size = (shi - slo).norm();
+  for (int c = 0; c < 2; ++c) {
+    EXPECT_LE(lo[c], slo[c] + 1e-12);
+    EXPECT_GE(hi[c], shi[c] - 1e-12);
+    EXPECT_LT(slo[c] - lo[c], 0.05 * size);
+    EXPECT_LT(hi[c] - shi[c], 0.05 * size);
+  }
+  // degree 12 with 11 consecutive points at infinity
+  std::vector<double> pts, w;
+  for (int i = 0; i <= 12; ++i) {
+    pts.insert(pts.end(), {std::cos(i * 0.2), std::sin(i * 0.2)});
+    w.push_back(i == 0 || i == 12 ? 1.0 : 0.0);
+  }
+  const BSplineCurve c({KnotVector::bezier(12)}, 2, pts, w);
+  const auto [clo, chi] = bounding_box(c, 2);
+  const auto [elo, ehi] = bounding_box(c, 0);
+  for (int i = 0; i <= 200; ++i) {
+    const auto x = c.evaluate({i / 200.0});
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_GE(x[k], clo[k] - 1e-12);
+      EXPECT_LE(x[k], chi[k] + 1e-12);
+      EXPECT_GE(x[k], elo[k] - 1e-12);
+      EXPECT_LE(x[k], ehi[k] + 1e-12);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace volspline

@@ -235,3 +235,24 @@ TEST(TensorSpline, ParameterOutsideDomainIsAnError) {
 
 }  // namespace
 }  // namespace volspline
+
+namespace volspline {
+namespace {
+
+TEST(TensorSpline, WeightsAreCheckedFromBothSidesOfADiscontinuity) {
+  // Knot 1 has multiplicity p + 1: the left piece ends at control point 2, whose weight 0 would
+  // send the curve to infinity as t -> 1 from the left (a right-limit check alone misses it).
+  const KnotVector kv(2, {0, 0, 0, 1, 1, 1, 2, 2, 2});
+  EXPECT_THROW(BSplineCurve({kv}, 2, {0, 0, 1, 1, 2, 0, 3, 3, 4, 1, 5, 0}, {1, 1, 0, 1, 1, 1}), InvalidInput);
+  EXPECT_THROW(BSplineCurve({kv}, 2, {0, 0, 1, 1, 2, 0, 3, 3, 4, 1, 5, 0}, {1, 1, 1, 0, 1, 1}), InvalidInput);
+  EXPECT_NO_THROW(BSplineCurve({kv}, 2, {0, 0, 1, 1, 2, 0, 3, 3, 4, 1, 5, 0}, {1, 0, 1, 1, 0, 1}));
+}
+
+TEST(TensorSpline, RoundOffNegativeHomogeneousWeightsAreZero) {
+  const auto c = BSplineCurve::from_homogeneous({KnotVector::bezier(2)}, 1, true, {1, 1, 1, -1e-17, 1, 1});
+  EXPECT_EQ(c.weights()[1], 0.0);
+  EXPECT_THROW(BSplineCurve::from_homogeneous({KnotVector::bezier(2)}, 1, true, {1, 1, 1, -0.1, 1, 1}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace volspline

@@ -32,6 +32,10 @@ class KnotVector {
   /// The span index s with t_s <= t < t_{s+1} and p <= s < num_basis(); at the domain maximum
   /// the last nonempty span. t must lie in the domain (not checked: callers check once).
   int find_span(double t) const;
+  /// The span whose closure contains t from the left: the nonempty span s with
+  /// t_s < t <= t_{s+1}; at the domain minimum the first nonempty span. Evaluating `basis` on it
+  /// gives the left limit, which differs from find_span only at knots of multiplicity p + 1.
+  int find_span_left(double t) const;
   /// The p+1 basis functions N_{s-p..s}(t) that may be nonzero on span s.
   void basis(int span, double t, double* values) const;
   /// The p+1 basis functions and their first derivatives: values[0..p], then derivatives

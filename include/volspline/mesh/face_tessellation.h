@@ -28,7 +28,8 @@ std::vector<double> face_samples(const KnotVector& knots, int resolution);
 /// common parameter values and welded by parameter. Triangles are oriented so that the enclosed
 /// volume is positive (outward normals, whatever the handedness of the parameterisation).
 /// For a volume whose faces are not degenerate the result is closed: every edge is shared by
-/// exactly two triangles. \throw InvalidInput if resolution < 1.
+/// exactly two triangles. \throw InvalidInput if resolution < 1 or the control points are not
+/// in R^3 (where() = "control_points").
 TriangleMesh tessellate_faces(const BSplineVolume& volume, const FaceTessellationOptions& options = {});
 
 }  // namespace volspline

@@ -14,12 +14,14 @@ namespace volspline {
 template <int D>
 TensorSpline<D> transform_affine(const TensorSpline<D>& spline, const Eigen::MatrixXd& A, const Eigen::VectorXd& b);
 
-/// An axis-aligned box containing the spline over its whole domain: the box of the control
-/// points (convex hull property). Weight-0 control points are not in the hull; they are first
-/// removed by degree elevation, whose new weights are positive combinations of neighbouring
-/// ones (Lasser 1994, after eq. 5). With `subdivisions` > 0 every knot span is first halved
-/// that many times by knot insertion; the control net then approaches the spline
-/// quadratically, so the box tightens to the true one. Returns (min, max).
+/// An axis-aligned box containing the spline over its domain, from control points (convex
+/// hull property). With subdivisions = 0 it is the box of the control net as given (unclamped
+/// splines included: it may be loose). With subdivisions = k > 0 the spline is cut into its
+/// Bézier pieces, each halved k times in every direction, and the box is that of all their
+/// control nets: it converges quadratically to the true box. Weight-0 control points lie outside
+/// the hull; pieces holding one are halved further until none is left (their new weights are
+/// positive combinations of the old, Lasser 1994 after eq. 5), and with subdivisions = 0 degree
+/// elevation removes them. Returns (min, max).
 template <int D>
 std::pair<Eigen::VectorXd, Eigen::VectorXd> bounding_box(const TensorSpline<D>& spline, int subdivisions = 0);
 
