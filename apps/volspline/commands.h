@@ -10,5 +10,8 @@ void add_eval_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
 void add_faces_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
+void add_make_command(CLI::App& app);
+void add_ffd_command(CLI::App& app);
+void add_lattice_command(CLI::App& app);
 
 }  // namespace volspline::cli
