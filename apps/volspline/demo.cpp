@@ -7,6 +7,11 @@
 #include "commands.h"
 #include "volspline/core/error.h"
 #include "volspline/construct/example_solids.h"
+#include "volspline/construct/paper_examples.h"
+#include "volspline/construct/primitives.h"
+#include "volspline/deform/ffd.h"
+#include "volspline/deform/ffd_example.h"
+#include "volspline/deform/lattice.h"
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/face_tessellation.h"
 #include "volspline/mesh/mesh_writer.h"
@@ -32,6 +37,17 @@ void add_demo_command(CLI::App& app) {
         {"twisted", "column twisted a quarter turn (degree 1, 1, 3)", twisted_volume(0.25)},
         {"half-cylinder-shell", "exact rational thick half cylinder, weight-0 control points (Lasser Thm 2, 180 deg)",
          half_cylinder_shell(1.0, 2.0, 1.0)},
+        {"ball", "exact solid ball: a half disk revolved, degree (1, 2, 2)", ball(1.0)},
+        {"torus-segment", "270 degree segment of an exact solid torus", torus(3.0, 1.0, 270.0)},
+        {"hollow-cylinder", "exact thick ring (make cylinder --inner)", cylinder(2.0, 1.0, 1.2)},
+        {"frustum", "exact cone frustum", cone(2.0, 0.7, 3.0)},
+        {"half-torus", "Lasser Fig. 2: solid half torus, one Bezier volume with weight-0 control points", half_torus()},
+        {"hyperboloid", "Lasser Fig. 3: segment of a solid hyperboloid of one sheet", hyperboloid_segment()},
+        {"half-cylinder-sweep", "Joy-Duchaineau Fig. 1: half cylinder swept along a line (folds over itself)",
+         half_cylinder_sweep()},
+        {"swept-patch", "Joy-Duchaineau Fig. 10: bicubic patch swept along a line", swept_patch()},
+        {"twisted-loft", "Joy-Duchaineau Fig. 11: the patch twisted 35 degrees, sampled 4 times and lofted", twisted_loft()},
+        {"curved-loft", "Joy-Duchaineau Fig. 13: the patch swept along a curved path and lofted", curved_loft()},
     };
     for (const auto& e : examples) {
       const std::filesystem::path base = std::filesystem::path(*dir) / e.name;
@@ -48,6 +64,17 @@ void add_demo_command(CLI::App& app) {
       std::cout << e.name << ": " << e.description << "\n  " << base.string() << ".json\n  " << base.string() << ".ply\n  "
                 << base.string() << ".png\n";
     }
+    // Free-form deformation (Lasser §III.2): a bar bent and twisted by a segmented lattice.
+    const FfdExample ffd = bent_bar_ffd_example();
+    const std::filesystem::path base = std::filesystem::path(*dir) / "ffd-bent-bar";
+    write_model(lattice_to_model(ffd.lattice), base.string() + "-lattice.json");
+    const TriangleMesh bent = deform_mesh(ffd.lattice, ffd.mesh);
+    write_mesh(bent, base.string() + ".ply");
+    RenderOptions options;
+    options.color = ColorMode::Single;
+    write_png(render_mesh(bent, options), base.string() + ".png");
+    std::cout << "ffd-bent-bar: a 4 x 1 x 1 bar deformed by a degree (3, 2, 2) lattice with 3 cells\n  " << base.string()
+              << "-lattice.json\n  " << base.string() << ".ply\n  " << base.string() << ".png\n";
   });
 }
 

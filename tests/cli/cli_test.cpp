@@ -73,7 +73,7 @@ std::vector<double> numbers(const std::string& line) {
 }
 
 TEST_F(Cli, HelpOnEverySubcommand) {
-  for (const char* sub : {"", "info", "eval", "convert", "faces", "demo"}) {
+  for (const char* sub : {"", "info", "eval", "convert", "faces", "demo", "make", "make ball", "make sweep", "ffd", "lattice"}) {
     const auto r = run(std::string(sub) + " --help", dir());
     EXPECT_EQ(r.code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
@@ -261,7 +261,9 @@ TEST_F(Cli, DemoWritesEveryExample) {
   const auto out = dir() / "demo";
   const auto r = run("demo --out " + out.string(), dir());
   ASSERT_EQ(r.code, 0) << r.err;
-  for (const char* name : {"bent-tricubic", "twisted", "half-cylinder-shell"})
+  for (const char* name : {"bent-tricubic", "twisted", "half-cylinder-shell", "ball", "torus-segment", "hollow-cylinder",
+                           "frustum", "half-torus", "hyperboloid", "half-cylinder-sweep", "swept-patch", "twisted-loft",
+                           "curved-loft", "ffd-bent-bar"})
     for (const char* ext : {".json", ".ply", ".png"}) EXPECT_TRUE(std::filesystem::exists(out / (std::string(name) + ext))) << name << ext;
   // the demo's rational model has points at infinity and reads back
   const Model m = read_model(out / "half-cylinder-shell.json");
