@@ -1,11 +1,13 @@
-// volspline ffd LATTICE.json IN.(obj|ply|stl) -o OUT.(obj|ply|stl) [--png IMAGE.png] [--ascii]
+// volspline ffd LATTICE.json IN.(obj|ply|stl|json) -o OUT.(obj|ply|stl|json) [--png IMAGE.png] [--ascii]
 #include <iostream>
+#include <optional>
 
 #include "cli_support.h"
 #include "commands.h"
 #include "volspline/core/error.h"
 #include "volspline/deform/ffd.h"
 #include "volspline/deform/lattice.h"
+#include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/mesh_reader.h"
 #include "volspline/mesh/mesh_writer.h"
@@ -24,31 +26,60 @@ void add_ffd_command(CLI::App& app) {
   auto edges = std::make_shared<bool>(false);
   auto size = std::make_shared<std::string>("800,600");
   cmd->add_option("LATTICE", *lattice_path, "lattice model file (one volume with metadata.lattice)")->required();
-  cmd->add_option("MESH", *in, "mesh file: .obj, .ply or .stl")->required();
-  cmd->add_option("-o,--output", *out, "deformed mesh: .ply, .obj or .stl")->required();
+  cmd->add_option("INPUT", *in, "mesh file (.obj, .ply, .stl), or a model file (.json) whose curves and surfaces are composed exactly")->required();
+  cmd->add_option("-o,--output", *out, "deformed mesh (.ply, .obj, .stl), or .json for a model input")->required();
   cmd->add_option("--png", *png, "also render a shaded picture of the deformed mesh");
   cmd->add_flag("--ascii", *ascii, "write PLY or STL as text");
   cmd->add_flag("--edges", *edges, "draw the triangle edges in the picture");
   cmd->add_option("--size", *size, "picture size W,H in pixels (default 800,600)");
   cmd->callback([=] {
-    mesh_format_from_path(*out);  // reject a bad extension before any work
+    if (std::filesystem::path(*in).extension() == ".json") {
+      // Spline curves and surfaces: exact functional composition through the lattice.
+      if (std::filesystem::path(*out).extension() != ".json")
+        throw InvalidInput("a model input needs a .json output, got '" + *out + "'", "--output");
+      const Lattice lattice = lattice_from_model(read_model(*lattice_path), *lattice_path);
+      Model model = read_model(*in);
+      for (std::size_t i = 0; i < model.objects.size(); ++i) {
+        auto& object = model.objects[i];
+        try {
+          if (auto* c = std::get_if<BSplineCurve>(&object.spline)) object.spline = deform_curve(lattice, *c);
+          else if (auto* f = std::get_if<BSplineSurface>(&object.spline)) object.spline = deform_surface(lattice, *f);
+          else throw InvalidInput("expected a curve or a surface; deform volumes by composing their control points with `make`", "type");
+        } catch (const InvalidInput& e) {
+          throw e.located(*in + ": objects[" + std::to_string(i) + "]");
+        }
+        object.bezier = false;
+      }
+      write_model(model, *out);
+      std::cout << "wrote " << *out << " (" << model.objects.size() << " object(s), composed exactly)\n";
+      return;
+    }
+    const MeshFormat format = mesh_format_from_path(*out);  // reject a bad extension before any work
     if (!png->empty() && std::filesystem::path(*png).extension() != ".png")
       throw InvalidInput("expected a file name ending in .png, got '" + *png + "'", "--png");
     const auto wh = parse_integers(*size, 2, 16, "--size");
+    if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + *size + "'", "--size");
     const Lattice lattice = lattice_from_model(read_model(*lattice_path), *lattice_path);
     const TriangleMesh mesh = read_mesh(*in);
     const TriangleMesh deformed = deform_mesh(lattice, mesh);
-    write_mesh(deformed, *out, {.ascii = *ascii});
-    std::cout << "wrote " << *out << ": " << deformed.num_vertices() << " vertices, " << deformed.num_triangles() << " triangles\n";
+    // Both outputs are opened before either is committed: a failing picture leaves no mesh.
+    AtomicFile mesh_file(*out);
+    mesh_file.stream() << mesh_bytes(deformed, format, {.ascii = *ascii});
+    std::optional<AtomicFile> png_file;
     if (!png->empty()) {
       RenderOptions options;
       options.width = wh[0];
       options.height = wh[1];
       options.edges = *edges;
       options.color = ColorMode::Single;
-      write_png(render_mesh(deformed, options), *png);
-      std::cout << "wrote " << *png << "\n";
+      const std::string bytes = png_bytes(render_mesh(deformed, options));
+      png_file.emplace(*png);
+      png_file->stream() << bytes;
     }
+    mesh_file.commit();
+    if (png_file) png_file->commit();
+    std::cout << "wrote " << *out << ": " << deformed.num_vertices() << " vertices, " << deformed.num_triangles() << " triangles\n";
+    if (png_file) std::cout << "wrote " << *png << "\n";
   });
 }
 

@@ -94,6 +94,31 @@ TEST_F(FfdCli, MovedControlPointMovesTheMeshAsTheLibraryDoes) {
   EXPECT_NEAR(out.bounding_box().first.z(), -1.0, 1e-3);
 }
 
+TEST_F(FfdCli, SplineCurvesAreComposedExactly) {
+  // A single-cell lattice around the unit cube with one control point pulled, and a cubic curve
+  // inside it: the written curve must be lattice(curve(t)) at every t.
+  const std::vector<Eigen::Vector3d> corners{{0, 0, 0}, {1, 1, 1}};
+  Lattice lattice = undeformed_lattice(corners, {2, 2, 2}, {1, 1, 1}, 0.0);
+  std::vector<double> points = lattice.volume.points();
+  points[3 * static_cast<std::size_t>(lattice.volume.linear_index({1, 1, 1})) + 2] += 0.5;
+  lattice.volume = BSplineVolume(lattice.volume.knot_vectors(), 3, points);
+  write_model(lattice_to_model(lattice), path("lattice.json"));
+  const BSplineCurve curve({KnotVector::bezier(3)}, 3, {0.1, 0.2, 0.3, 0.4, 0.9, 0.5, 0.7, 0.1, 0.6, 0.9, 0.8, 0.2});
+  Model in;
+  in.objects.push_back({"curve", false, curve, nullptr});
+  write_model(in, path("curve.json"));
+  const auto r = run("ffd " + path("lattice.json") + " " + path("curve.json") + " -o " + path("bent.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Model result = read_model(path("bent.json"));
+  const auto& bent = std::get<BSplineCurve>(result.objects[0].spline);
+  for (int i = 0; i <= 20; ++i) {
+    const double t = i / 20.0;
+    const Eigen::Vector3d expected = deform_point(lattice, curve.evaluate({t}));
+    EXPECT_LT((bent.evaluate({t}) - expected).norm(), 1e-12);
+  }
+  EXPECT_EQ(run("ffd " + path("lattice.json") + " " + path("curve.json") + " -o " + path("bent.ply")).code, 2);
+}
+
 TEST_F(FfdCli, BadInputIsExitCode2WithAMessage) {
   write_mesh(test::unit_cube(), path("cube.obj"));
   std::ofstream(path("broken.obj")) << "v 0 0 0\nf 1 2 3\n";
