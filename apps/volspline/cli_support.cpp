@@ -1,11 +1,14 @@
 #include "cli_support.h"
 
 #include <charconv>
+#include <optional>
 #include <cmath>
 #include <sstream>
 
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
+#include "volspline/io/atomic_file.h"
+#include "volspline/render/image.h"
 
 namespace volspline::cli {
 
@@ -57,6 +60,20 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
 
 std::vector<int> parse_integers(const std::string& text, std::size_t count, int minimum, const std::string& option) {
   return parse_list<int>(text, count, option, "an integer >= " + std::to_string(minimum), [&](int x) { return x >= minimum; });
+}
+
+void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, MeshFormat format, bool ascii,
+                            const std::string& png, const RenderOptions& options) {
+  AtomicFile mesh_file(out);
+  mesh_file.stream() << mesh_bytes(mesh, format, {.ascii = ascii});
+  std::optional<AtomicFile> png_file;
+  if (!png.empty()) {
+    const std::string bytes = png_bytes(render_mesh(mesh, options));
+    png_file.emplace(png);
+    png_file->stream() << bytes;
+  }
+  mesh_file.commit();
+  if (png_file) png_file->commit();
 }
 
 int parse_direction(const std::string& text, const std::string& option) {

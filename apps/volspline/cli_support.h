@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "volspline/io/model_file.h"
+#include "volspline/mesh/mesh_writer.h"
+#include "volspline/render/mesh_renderer.h"
 
 namespace volspline::cli {
 
@@ -16,6 +18,10 @@ std::vector<int> parse_integers(const std::string& text, std::size_t count, int 
 int parse_direction(const std::string& text, const std::string& option);
 /// Number of parameters of an object (1, 2 or 3).
 int parameter_count(const ModelObject& object);
+/// Writes `mesh` to `out` and, unless `png` is empty, its picture to `png`. Both files are
+/// prepared and opened before either is committed, so a failure on one leaves neither behind.
+void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, MeshFormat format, bool ascii,
+                            const std::string& png, const RenderOptions& options);
 /// Formats numbers with 17 significant digits separated by spaces.
 std::string join_numbers(const double* values, std::size_t count);
 

@@ -1,6 +1,5 @@
 // volspline faces MODEL -o OUT.(ply|obj|stl) [--png IMAGE.png] [--resolution N] [--ascii]
 #include <iostream>
-#include <optional>
 
 #include "cli_support.h"
 #include "commands.h"
@@ -53,28 +52,17 @@ void add_faces_command(CLI::App& app) {
       }
     }
     if (volumes == 0) throw InvalidInput("the model has no volume objects (bspline_volume or bezier_volume)", *in);
-    // Both outputs are prepared and opened before either is committed, so a failure on the
-    // picture (a missing folder, say) leaves no mesh file behind either.
-    AtomicFile mesh_file(*out);
-    mesh_file.stream() << mesh_bytes(mesh, format, {.ascii = *ascii});
-    std::optional<AtomicFile> png_file;
-    if (!png->empty()) {
-      RenderOptions options;
-      options.width = wh[0];
-      options.height = wh[1];
-      options.edges = *edges;
-      options.transparent_background = *transparent;
-      const std::string bytes = png_bytes(render_mesh(mesh, options));
-      png_file.emplace(*png);
-      png_file->stream() << bytes;
-    }
-    mesh_file.commit();
-    if (png_file) png_file->commit();
+    RenderOptions options;
+    options.width = wh[0];
+    options.height = wh[1];
+    options.edges = *edges;
+    options.transparent_background = *transparent;
+    write_mesh_and_picture(mesh, *out, format, *ascii, *png, options);
     const auto stats = edge_statistics(mesh);
     std::cout << "wrote " << *out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles from "
               << volumes << " volume(s); " << (stats.closed() ? "closed" : "not closed") << " (" << stats.boundary_edges
               << " boundary, " << stats.nonmanifold_edges << " non-manifold edges)\n";
-    if (png_file) std::cout << "wrote " << *png << "\n";
+    if (!png->empty()) std::cout << "wrote " << *png << "\n";
   });
 }
 

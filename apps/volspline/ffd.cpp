@@ -1,6 +1,5 @@
 // volspline ffd LATTICE.json IN.(obj|ply|stl|json) -o OUT.(obj|ply|stl|json) [--png IMAGE.png] [--ascii]
 #include <iostream>
-#include <optional>
 
 #include "cli_support.h"
 #include "commands.h"
@@ -62,24 +61,14 @@ void add_ffd_command(CLI::App& app) {
     const Lattice lattice = lattice_from_model(read_model(*lattice_path), *lattice_path);
     const TriangleMesh mesh = read_mesh(*in);
     const TriangleMesh deformed = deform_mesh(lattice, mesh);
-    // Both outputs are opened before either is committed: a failing picture leaves no mesh.
-    AtomicFile mesh_file(*out);
-    mesh_file.stream() << mesh_bytes(deformed, format, {.ascii = *ascii});
-    std::optional<AtomicFile> png_file;
-    if (!png->empty()) {
-      RenderOptions options;
-      options.width = wh[0];
-      options.height = wh[1];
-      options.edges = *edges;
-      options.color = ColorMode::Single;
-      const std::string bytes = png_bytes(render_mesh(deformed, options));
-      png_file.emplace(*png);
-      png_file->stream() << bytes;
-    }
-    mesh_file.commit();
-    if (png_file) png_file->commit();
+    RenderOptions options;
+    options.width = wh[0];
+    options.height = wh[1];
+    options.edges = *edges;
+    options.color = ColorMode::Single;
+    write_mesh_and_picture(deformed, *out, format, *ascii, *png, options);
     std::cout << "wrote " << *out << ": " << deformed.num_vertices() << " vertices, " << deformed.num_triangles() << " triangles\n";
-    if (png_file) std::cout << "wrote " << *png << "\n";
+    if (!png->empty()) std::cout << "wrote " << *png << "\n";
   });
 }
 

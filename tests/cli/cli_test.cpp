@@ -10,6 +10,7 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "support/cli_runner.h"
 #include "support/temporary_directory.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/io/model_file.h"
@@ -17,23 +18,9 @@
 namespace volspline {
 namespace {
 
-struct Result {
-  int code;
-  std::string out, err;
-};
+using Result = test::CliResult;
 
-Result run(const std::string& args, const std::filesystem::path& dir) {
-  const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
-  const std::string cmd = std::string(VOLSPLINE_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  auto slurp = [](const std::string& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
+Result run(const std::string& args, const std::filesystem::path& dir) { return test::run_cli(args, dir); }
 
 class Cli : public ::testing::Test {
  protected:
@@ -263,8 +250,10 @@ TEST_F(Cli, DemoWritesEveryExample) {
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* name : {"bent-tricubic", "twisted", "half-cylinder-shell", "ball", "torus-segment", "hollow-cylinder",
                            "frustum", "half-torus", "hyperboloid", "half-cylinder-sweep", "swept-patch", "twisted-loft",
-                           "curved-loft", "ffd-bent-bar"})
+                           "curved-loft"})
     for (const char* ext : {".json", ".ply", ".png"}) EXPECT_TRUE(std::filesystem::exists(out / (std::string(name) + ext))) << name << ext;
+  for (const char* file : {"ffd-bent-bar-lattice.json", "ffd-bent-bar.ply", "ffd-bent-bar.png"})
+    EXPECT_TRUE(std::filesystem::exists(out / file)) << file;
   // the demo's rational model has points at infinity and reads back
   const Model m = read_model(out / "half-cylinder-shell.json");
   const auto& v = std::get<BSplineVolume>(m.objects[0].spline);

@@ -9,6 +9,7 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "support/cli_runner.h"
 #include "support/temporary_directory.h"
 #include "support/test_meshes.h"
 #include "volspline/deform/ffd.h"
@@ -20,26 +21,14 @@
 namespace volspline {
 namespace {
 
-struct Result {
-  int code;
-  std::string out, err;
-};
+using Result = test::CliResult;
 
 class FfdCli : public ::testing::Test {
  protected:
   test::TemporaryDirectory tmp;
   std::string path(const std::string& name) const { return (tmp / name).string(); }
   Result run(const std::string& args) const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string cmd = std::string(VOLSPLINE_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-    const int status = std::system(cmd.c_str());
-    auto slurp = [](const std::string& p) {
-      std::ifstream in(p);
-      std::stringstream s;
-      s << in.rdbuf();
-      return s.str();
-    };
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    return test::run_cli(args, tmp.path());
   }
 };
 

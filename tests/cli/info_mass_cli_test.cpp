@@ -15,6 +15,7 @@
 
 #include "support/temporary_directory.h"
 #include "volspline/construct/example_solids.h"
+#include "support/cli_runner.h"
 #include "volspline/io/model_file.h"
 
 namespace volspline {
@@ -22,23 +23,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result run_cli(const std::string& args, const std::filesystem::path& dir) {
-  const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
-  const std::string cmd = std::string(VOLSPLINE_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  auto slurp = [](const std::string& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
+using Result = test::CliResult;
+using test::run_cli;
 
 /// The box [x0, x0 + a] x [y0, y0 + b] x [z0, z0 + c] as a trilinear volume.
 BSplineVolume box(double x0, double y0, double z0, double a, double b, double c) {

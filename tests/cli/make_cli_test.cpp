@@ -10,16 +10,14 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "support/cli_runner.h"
 #include "support/temporary_directory.h"
 #include "volspline/io/model_file.h"
 
 namespace volspline {
 namespace {
 
-struct Result {
-  int code;
-  std::string out, err;
-};
+using Result = test::CliResult;
 
 class MakeCli : public ::testing::Test {
  protected:
@@ -27,16 +25,7 @@ class MakeCli : public ::testing::Test {
   std::string path(const std::string& name) const { return (tmp.path() / name).string(); }
 
   Result run(const std::string& args) const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string cmd = std::string(VOLSPLINE_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-    const int status = std::system(cmd.c_str());
-    auto slurp = [](const std::string& p) {
-      std::ifstream in(p);
-      std::stringstream s;
-      s << in.rdbuf();
-      return s.str();
-    };
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    return test::run_cli(args, tmp.path());
   }
 
   template <int D>
