@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -24,31 +25,27 @@ void gauss_legendre(int n, double* nodes, double* weights) {
   if (n < 1) throw InvalidInput("a Gauss-Legendre rule needs at least one point");
   // Newton's method on P_n from the Chebyshev-like first guess; the nodes are symmetric, so the
   // upper half is computed and mirrored (the middle node of an odd rule is exactly 0).
+  // P_n(x) and P_n'(x) by the three-term recurrence.
+  auto legendre = [n](double x) {
+    double p0 = 1.0, p1 = x;
+    for (int k = 2; k <= n; ++k) {
+      const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+      p0 = p1;
+      p1 = p2;
+    }
+    return std::pair<double, double>{p1, n * (x * p1 - p0) / (x * x - 1.0)};
+  };
   for (int i = 0; i < (n + 1) / 2; ++i) {
     double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
     double dp = 1.0;
     for (int iter = 0; iter < 100; ++iter) {
-      double p0 = 1.0, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);
-      const double dx = p1 / dp;
+      const auto [p, derivative] = legendre(x);
+      dp = derivative;
+      const double dx = p / dp;
       x -= dx;
       if (std::abs(dx) <= 1e-17) break;
     }
-    // final derivative at the converged node for the weight
-    {
-      double p0 = 1.0, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);
-    }
+    dp = legendre(x).second;  // at the converged node, for the weight
     if (2 * i + 1 == n) x = 0.0;
     const double w = 2.0 / ((1.0 - x * x) * dp * dp);
     nodes[n - 1 - i] = x;
