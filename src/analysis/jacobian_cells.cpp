@@ -157,13 +157,13 @@ std::pair<JacobianCell, JacobianCell> JacobianSubdivision::split(const JacobianC
   return {std::move(a), std::move(b)};
 }
 
-int JacobianSubdivision::split_direction(const JacobianCell& cell) const {
+int JacobianSubdivision::split_direction(const JacobianCell& cell, bool by_magnitude) const {
   std::array<double, 3> g{};
+  auto measure = [by_magnitude](std::pair<double, double> r) {
+    return by_magnitude ? std::max(std::abs(r.first), std::abs(r.second)) : r.second - r.first;
+  };
   if (method_ == JacobianBoundMethod::Bezier) {
-    for (int d = 0; d < 3; ++d) {
-      const auto [lo, hi] = derivative_range(cell.jacobian.coefficients, d);
-      g[static_cast<std::size_t>(d)] = hi - lo;
-    }
+    for (int d = 0; d < 3; ++d) g[static_cast<std::size_t>(d)] = measure(derivative_range(cell.jacobian.coefficients, d));
   } else {
     // §6: J_d = det(D_dd..) summed over the three rows, each bounded by eq. 1; all in local
     // parameters, which already carries the factor "cell size in d".
@@ -177,7 +177,7 @@ int JacobianSubdivision::split_direction(const JacobianCell& cell) const {
         rows[static_cast<std::size_t>(row)] = derivative_vectors(cell.geometry, {row, d});
         sum = add(sum, cone_jacobian_bound(rows[0], rows[1], rows[2]));
       }
-      g[static_cast<std::size_t>(d)] = sum.second - sum.first;
+      g[static_cast<std::size_t>(d)] = measure(sum);
     }
   }
   int best = -1;
@@ -186,6 +186,47 @@ int JacobianSubdivision::split_direction(const JacobianCell& cell) const {
     if (best < 0 || g[static_cast<std::size_t>(d)] > g[static_cast<std::size_t>(best)]) best = d;
   }
   return best;
+}
+
+double JacobianSubdivision::nonlinearity(const JacobianCell& cell) const {
+  if (method_ != JacobianBoundMethod::Bezier) throw InvalidInput("nonlinearity needs Bézier bounds");
+  const BernsteinTensor& c = cell.jacobian.coefficients;
+  // A(s) = mean + sum_d slope_d (s_d - 1/2), slope_d the mean end-to-end difference along d;
+  // the Bernstein coefficients of A are its values at the Greville points i / n.
+  double mean = 0;
+  for (double x : c.coefficients) mean += x;
+  mean /= static_cast<double>(c.count());
+  std::array<double, 3> slope{};
+  for (int d = 0; d < 3; ++d) {
+    const int n = c.degrees[static_cast<std::size_t>(d)];
+    if (n == 0) continue;
+    double sum = 0;
+    int lines = 0;
+    for (int k = 0; k < c.size(2); ++k)
+      for (int j = 0; j < c.size(1); ++j)
+        for (int i = 0; i < c.size(0); ++i) {
+          const std::array<int, 3> idx{i, j, k};
+          if (idx[static_cast<std::size_t>(d)] != 0) continue;
+          std::array<int, 3> end = idx;
+          end[static_cast<std::size_t>(d)] = n;
+          sum += c.at(end[0], end[1], end[2]) - c.at(i, j, k);
+          ++lines;
+        }
+    slope[static_cast<std::size_t>(d)] = sum / lines;
+  }
+  double deviation = 0;
+  for (int k = 0; k < c.size(2); ++k)
+    for (int j = 0; j < c.size(1); ++j)
+      for (int i = 0; i < c.size(0); ++i) {
+        double a = mean;
+        const std::array<int, 3> idx{i, j, k};
+        for (int d = 0; d < 3; ++d) {
+          const int n = c.degrees[static_cast<std::size_t>(d)];
+          if (n > 0) a += slope[static_cast<std::size_t>(d)] * (static_cast<double>(idx[static_cast<std::size_t>(d)]) / n - 0.5);
+        }
+        deviation = std::max(deviation, std::abs(c.at(i, j, k) - a));
+      }
+  return deviation + cell.jacobian.error_bound;
 }
 
 Eigen::Vector3d JacobianSubdivision::parameter(const std::array<std::int64_t, 3>& lattice) const {

@@ -116,7 +116,7 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
   while (!queue.empty() && !(positive && negative) && result.cells < options.max_cells) {
     JacobianCell cell = queue.top();
     queue.pop();
-    const int direction = subdivision.split_direction(cell);
+    const int direction = subdivision.split_direction(cell, true);
     if (cell.width() <= stop_width || direction < 0) {
       unresolved = true;
       finish(cell);

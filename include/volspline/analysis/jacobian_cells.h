@@ -67,8 +67,16 @@ class JacobianSubdivision {
   /// kMaxLevel in that direction.
   std::pair<JacobianCell, JacobianCell> split(const JacobianCell& cell, int direction) const;
   /// Joy–Duchaineau §6: the direction d maximising width(bound of J_d) * (cell size in d),
-  /// among those not yet at kMaxLevel; -1 if none is left.
-  int split_direction(const JacobianCell& cell) const;
+  /// among those not yet at kMaxLevel; -1 if none is left. This makes the zero set flat
+  /// relative to the cell; it never splits a direction in which J is linear, so when cells are
+  /// split until the bound of J itself is narrow, `by_magnitude` uses max |bound of J_d| *
+  /// (cell size in d) instead (the direction in which J varies most).
+  int split_direction(const JacobianCell& cell, bool by_magnitude = false) const;
+
+  /// Bezier method: a bound of |J - A| on the cell for an affine function A (fitted to the
+  /// coefficients), error bound included. Marching tetrahedra interpolate J linearly; they
+  /// reproduce affine functions, so their error on the cell is at most twice this.
+  double nonlinearity(const JacobianCell& cell) const;
 
   /// The largest |J| bound over the whole domain (the scale of relative tolerances); 0 for a
   /// volume with J = 0 everywhere.
