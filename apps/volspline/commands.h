@@ -3,7 +3,15 @@
 // the library and prints; no mathematics lives here.
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
+
 namespace volspline::cli {
+
+/// Thrown by a subcommand that finished its work but must end with a particular exit code
+/// (for example `jacobian --fail-invalid`).
+struct ExitCode {
+  int code;
+};
 
 void add_info_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
@@ -13,5 +21,10 @@ void add_demo_command(CLI::App& app);
 void add_make_command(CLI::App& app);
 void add_ffd_command(CLI::App& app);
 void add_lattice_command(CLI::App& app);
+void add_jacobian_command(CLI::App& app);
+void add_boundary_command(CLI::App& app);
+
+/// Writes the boundary-determination examples of `demo` into `dir`.
+void write_boundary_demo(const std::filesystem::path& dir);
 
 }  // namespace volspline::cli

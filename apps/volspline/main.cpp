@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   volspline::cli::add_make_command(app);
   volspline::cli::add_ffd_command(app);
   volspline::cli::add_lattice_command(app);
+  volspline::cli::add_jacobian_command(app);
+  volspline::cli::add_boundary_command(app);
   volspline::cli::add_demo_command(app);
   try {
     app.parse(argc, argv);
@@ -27,6 +29,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const volspline::cli::ExitCode& e) {
+    return e.code;
   } catch (const CLI::ParseError& e) {
     app.exit(e);  // prints the message and usage hint to stderr
     return 2;

@@ -1,0 +1,98 @@
+// volspline jacobian MODEL [--tol T] [--max-cells N] [--bounds bezier|cone] [--json] [--fail-invalid]
+#include <iomanip>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
+#include "commands.h"
+#include "volspline/analysis/jacobian_validity.h"
+#include "volspline/core/error.h"
+#include "volspline/core/format.h"
+#include "volspline/io/model_file.h"
+
+namespace volspline::cli {
+
+namespace {
+
+JacobianBoundMethod parse_bounds(const std::string& text) {
+  if (text == "bezier") return JacobianBoundMethod::Bezier;
+  if (text == "cone") return JacobianBoundMethod::Cone;
+  throw InvalidInput("expected 'bezier' or 'cone', got '" + text + "'", "--bounds");
+}
+
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(x > 0 ? "inf" : "-inf"); }
+
+}  // namespace
+
+void add_jacobian_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("jacobian",
+                                 "Certify the sign of the Jacobian determinant of every volume: valid (orientation + or -), "
+                                 "invalid (with a witness point) or undecided within the budget");
+  auto in = std::make_shared<std::string>();
+  auto tol = std::make_shared<double>(1e-12);
+  auto max_cells = std::make_shared<std::int64_t>(200000);
+  auto bounds = std::make_shared<std::string>("bezier");
+  auto json = std::make_shared<bool>(false);
+  auto fail = std::make_shared<bool>(false);
+  cmd->add_option("MODEL", *in, "model file")->required();
+  cmd->add_option("--tol", *tol, "cells whose bound is narrower than TOL x max|J| are not split further (default 1e-12)");
+  cmd->add_option("--max-cells", *max_cells, "budget of cells examined per volume (default 200000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
+  cmd->add_option("--bounds", *bounds, "bezier (certified Bernstein coefficients, default) or cone (Joy–Duchaineau §5)");
+  cmd->add_flag("--json", *json, "print JSON: {\"objects\": [{\"verdict\", \"orientation\", \"lower\", \"upper\", \"witness\", \"cells\", \"seconds\"}]}");
+  cmd->add_flag("--fail-invalid", *fail, "exit with code 3 if any volume is invalid");
+  cmd->callback([=] {
+    JacobianValidityOptions options;
+    options.bounds = parse_bounds(*bounds);
+    options.tolerance = *tol;
+    options.max_cells = *max_cells;
+    if (!(*tol >= 0) || !std::isfinite(*tol)) throw InvalidInput("expected a finite number >= 0", "--tol");
+    const Model model = read_model(*in);
+    nlohmann::json out = {{"objects", nlohmann::json::array()}};
+    bool any_invalid = false;
+    int volumes = 0;
+    for (std::size_t i = 0; i < model.objects.size(); ++i) {
+      const auto* v = std::get_if<BSplineVolume>(&model.objects[i].spline);
+      if (!v) continue;
+      ++volumes;
+      JacobianValidity r;
+      try {
+        r = check_jacobian(*v, options);
+      } catch (const InvalidInput& e) {
+        throw e.located(*in + ": objects[" + std::to_string(i) + "]");
+      }
+      any_invalid = any_invalid || r.verdict == JacobianVerdict::Invalid;
+      nlohmann::json o = {{"object", i},
+                          {"name", model.objects[i].name},
+                          {"verdict", verdict_name(r.verdict)},
+                          {"orientation", r.orientation},
+                          {"lower", number(r.lower)},
+                          {"upper", number(r.upper)},
+                          {"witness", r.witness ? nlohmann::json(*r.witness) : nlohmann::json(nullptr)},
+                          {"witness_value", r.witness ? nlohmann::json(r.witness_value) : nlohmann::json(nullptr)},
+                          {"rational", v->is_rational()},
+                          {"cells", r.cells},
+                          {"seconds", r.seconds}};
+      out["objects"].push_back(o);
+      if (!*json) {
+        std::cout << "object " << i << (model.objects[i].name.empty() ? "" : " (" + model.objects[i].name + ")") << ": "
+                  << verdict_name(r.verdict);
+        if (r.verdict == JacobianVerdict::Valid) std::cout << ", orientation " << (r.orientation > 0 ? "+" : "-");
+        std::cout << "\n  J in [" << format_double(r.lower) << ", " << format_double(r.upper) << "]"
+                  << (v->is_rational() ? " (rational: from the bounds of w^4 J and of w)" : "") << "\n";
+        if (r.witness) {
+          std::cout << "  witness (u, v, w) = (" << join_numbers(r.witness->data(), 3) << ") where "
+                    << (r.witness_value == 0 ? "J = 0 (collapsed control points)"
+                                             : std::string(r.witness_value < 0 ? "J < 0" : "J > 0") + " (" + format_double(r.witness_value) + ")")
+                    << "\n";
+        }
+        std::cout << "  " << r.cells << " cells, " << std::setprecision(3) << r.seconds * 1e3 << " ms\n";
+      }
+    }
+    if (volumes == 0) throw InvalidInput("the model has no volume objects (bspline_volume or bezier_volume)", *in);
+    if (*json) std::cout << out.dump(2) << "\n";
+    if (*fail && any_invalid) throw ExitCode(3);
+  });
+}
+
+}  // namespace volspline::cli
