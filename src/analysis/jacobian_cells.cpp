@@ -68,10 +68,11 @@ JacobianSubdivision::JacobianSubdivision(const BSplineVolume& volume, JacobianBo
   for (int d = 0; d < 3; ++d) bezier = bezier && volume.knot_vector(d).is_bezier();
   input_error_ = extraction_error_bound(volume);
   if (bezier && !volume.is_rational()) input_error_ = 0;
-  for (const auto& cell : roots()) scale_ = std::max({scale_, std::abs(cell.lower), std::abs(cell.upper)});
+  roots_ = make_roots();
+  for (const auto& cell : roots_) scale_ = std::max({scale_, std::abs(cell.lower), std::abs(cell.upper)});
 }
 
-std::vector<JacobianCell> JacobianSubdivision::roots() const {
+std::vector<JacobianCell> JacobianSubdivision::make_roots() const {
   std::vector<JacobianCell> cells;
   cells.reserve(pieces_.size());
   for (std::size_t p = 0; p < pieces_.size(); ++p) {

@@ -61,8 +61,8 @@ class JacobianSubdivision {
   /// Pieces per direction.
   const std::array<int, 3>& piece_counts() const { return counts_; }
 
-  /// One cell per Bézier piece, bounded.
-  std::vector<JacobianCell> roots() const;
+  /// One cell per Bézier piece, bounded (computed once, at construction).
+  const std::vector<JacobianCell>& roots() const { return roots_; }
   /// The two halves of `cell` along `direction`, bounded. \throw InvalidInput if the cell is at
   /// kMaxLevel in that direction.
   std::pair<JacobianCell, JacobianCell> split(const JacobianCell& cell, int direction) const;
@@ -108,6 +108,7 @@ class JacobianSubdivision {
 
  private:
   void bound(JacobianCell& cell) const;
+  std::vector<JacobianCell> make_roots() const;
 
   BSplineVolume volume_;
   JacobianBoundMethod method_;
@@ -116,6 +117,7 @@ class JacobianSubdivision {
   std::array<std::vector<double>, 3> breakpoints_;
   double input_error_ = 0;
   double scale_ = 0;
+  std::vector<JacobianCell> roots_;
 };
 
 }  // namespace volspline
