@@ -13,5 +13,6 @@ void add_demo_command(CLI::App& app);
 void add_make_command(CLI::App& app);
 void add_ffd_command(CLI::App& app);
 void add_lattice_command(CLI::App& app);
+void add_blend_command(CLI::App& app);
 
 }  // namespace volspline::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   volspline::cli::add_make_command(app);
   volspline::cli::add_ffd_command(app);
   volspline::cli::add_lattice_command(app);
+  volspline::cli::add_blend_command(app);
   volspline::cli::add_demo_command(app);
   try {
     app.parse(argc, argv);

@@ -79,9 +79,9 @@ TriangleMesh each_child(const SceneNode& node, const Eigen::Vector3d& lo, const 
 
 Scene cylinder_intersection_scene() {
   Scene s;
-  s.spacing = 0.5;
-  s.box_min = Eigen::Vector3d::Constant(-1.5);
-  s.box_max = Eigen::Vector3d::Constant(1.5);
+  s.spacing = 0.25;
+  s.box_min = Eigen::Vector3d::Constant(-1.25);
+  s.box_max = Eigen::Vector3d::Constant(1.25);
   s.root = operation(SceneOperation::Intersection, {cylinder(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 1.0),
                                                     cylinder(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY(), 1.0)});
   return s;
@@ -112,7 +112,9 @@ Scene various_primitives_scene() {
   torus.primitive.minor_radius = 0.2;
   SceneNode cone = with_axis(PrimitiveKind::Cone, Eigen::Vector3d(0, 0, 1.45), -Eigen::Vector3d::UnitZ());
   cone.primitive.half_angle = 0.35;
-  const SceneNode capped_cone = operation(SceneOperation::Intersection, {cone, plane(Eigen::Vector3d(0, 0, 0.2), -Eigen::Vector3d::UnitZ())});
+    // The quadric is a double cone: the plane through the apex removes the upper nappe.
+  const SceneNode capped_cone = operation(SceneOperation::Intersection, {cone, plane(Eigen::Vector3d(0, 0, 0.2), -Eigen::Vector3d::UnitZ()),
+                                                                         plane(Eigen::Vector3d(0, 0, 1.45), Eigen::Vector3d::UnitZ())});
   s.root = operation(SceneOperation::Blend,
                      {primitive(ellipsoid), torus, capped_cylinder(Eigen::Vector3d(0, 0, -0.5), Eigen::Vector3d::UnitY(), 0.18, 1.3),
                       capped_cone},
@@ -145,21 +147,21 @@ std::vector<BlendFigure> paper_blend_figures() {
   }
   const Scene fig2 = sphere_and_rod_scene();
   const auto& [lo2, hi2] = *fig2.domain;
-  figures.push_back({"blend-fig2a", "Fig. 2a: two primitives, a sphere and a capped rod", each_child(fig2.root, lo2, hi2, 0.025)});
+  figures.push_back({"blend-fig2a", "Fig. 2a: two primitives, a sphere and a capped rod", each_child(fig2.root, lo2, hi2, 0.05)});
   figures.push_back({"blend-fig2b", "Fig. 2b: their union (pointwise minimum: a crease)",
-                     implicit_zero_set(operation(SceneOperation::Union, fig2.root.children), lo2, hi2, 0.025)});
+                     implicit_zero_set(operation(SceneOperation::Union, fig2.root.children), lo2, hi2, 0.05)});
   figures.push_back({"blend-fig2c", "Fig. 2c: their smooth blend; the box-spline surface is highlighted",
                      scene_zero_set(fig2, {.levels = 2, .method = ZeroSetMethod::Control}).mesh});
   const Scene fig3 = various_primitives_scene();
   figures.push_back({"blend-fig3a", "Fig. 3a: an ellipsoid, a torus, a capped rod and a capped cone",
-                     each_child(fig3.root, fig3.box_min, fig3.box_max, 0.025)});
+                     each_child(fig3.root, fig3.box_min, fig3.box_max, 0.05)});
   figures.push_back({"blend-fig3b", "Fig. 3b: their union (pointwise minimum)",
-                     implicit_zero_set(operation(SceneOperation::Union, fig3.root.children), fig3.box_min, fig3.box_max, 0.025)});
+                     implicit_zero_set(operation(SceneOperation::Union, fig3.root.children), fig3.box_min, fig3.box_max, 0.05)});
   figures.push_back({"blend-fig3c", "Fig. 3c: the primitives blended by the box spline",
                      scene_zero_set(fig3, {.levels = 2, .method = ZeroSetMethod::Control}).mesh});
   const Scene fig4 = two_tori_scene();
   const auto& [lo4, hi4] = *fig4.domain;
-  figures.push_back({"blend-fig4a", "Fig. 4a: the torus primitive", implicit_zero_set(fig4.root.children[0], lo4, hi4, 0.025)});
+  figures.push_back({"blend-fig4a", "Fig. 4a: the torus primitive", implicit_zero_set(fig4.root.children[0], lo4, hi4, 0.05)});
   const TriangleMesh joined = scene_zero_set(fig4, {.levels = 2, .method = ZeroSetMethod::Control}).mesh;
   figures.push_back({"blend-fig4b", "Fig. 4b: the box-spline part of the join of two tori", part_only(joined, kSplineSurfacePart)});
   figures.push_back({"blend-fig4c", "Fig. 4c: the complete joined object (box spline highlighted, tori outside)", joined});

@@ -4,6 +4,8 @@
 #include <string>
 #include <unordered_map>
 
+#include <Eigen/Geometry>
+
 #include "volspline/core/error.h"
 
 namespace volspline {

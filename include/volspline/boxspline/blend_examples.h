@@ -15,7 +15,7 @@
 namespace volspline {
 
 /// Fig. 1: the intersection of two perpendicular cylinders of radius 1 (axes x and y), box
-/// [-1.5, 1.5]³, spacing 0.5.
+/// [-1.25, 1.25]³, spacing 0.25.
 Scene cylinder_intersection_scene();
 /// Fig. 2: a sphere pierced by a capped rod; the box around the contact circles, a smooth blend
 /// of radius 0.25.
