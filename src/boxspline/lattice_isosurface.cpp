@@ -10,43 +10,17 @@
 
 namespace volspline {
 
-TetrahedralGrid::TetrahedralGrid(const Eigen::Vector3d& o, double h, std::array<int, 3> n) : origin(o), spacing(h), cells(n) {
+TetrahedralGrid::TetrahedralGrid(const Eigen::Vector3d& o, double h, std::array<int, 3> n, Layout l)
+    : layout(l), origin(o), spacing(h), cells(n) {
   if (!(h > 0.0) || !std::isfinite(h)) throw InvalidInput("expected a positive, finite grid spacing");
   std::size_t total = 1;
   for (int d = 0; d < 3; ++d) {
     if (n[d] < 1) throw InvalidInput("expected at least one cube per axis, got " + std::to_string(n[d]));
-    total *= static_cast<std::size_t>(2 * n[d] + 1);
-    if (total > (std::size_t{1} << 27)) throw InvalidInput("expected a grid of at most 2^27 nodes (use fewer levels or a smaller region)");
+    total *= static_cast<std::size_t>(l == Layout::AllNodes ? 2 * n[d] + 1 : n[d] + 1);
+    if (total > (std::size_t{1} << 27))
+      throw InvalidInput("expected a grid of at most 2^27 nodes (use fewer levels or a smaller region)");
   }
   values.assign(total, 0.0);
-}
-
-void TetrahedralGrid::average_centres() {
-  for (int c = 0; c < cells[2]; ++c)
-    for (int b = 0; b < cells[1]; ++b)
-      for (int a = 0; a < cells[0]; ++a) {
-        const int x = 2 * a, y = 2 * b, z = 2 * c;
-        double corner[2][2][2];
-        double sum = 0.0;
-        for (int k = 0; k < 2; ++k)
-          for (int j = 0; j < 2; ++j)
-            for (int i = 0; i < 2; ++i) sum += corner[i][j][k] = value(x + 2 * i, y + 2 * j, z + 2 * k);
-        value(x + 1, y + 1, z + 1) = sum / 8.0;
-        // The faces at the lower side of each axis; the upper ones belong to the next cube or,
-        // at the end of the grid, are done here too.
-        for (int s = 0; s < 2; ++s) {
-          if (s == 1 && a + 1 < cells[0]) continue;
-          value(x + 2 * s, y + 1, z + 1) = (corner[s][0][0] + corner[s][1][0] + corner[s][0][1] + corner[s][1][1]) / 4.0;
-        }
-        for (int s = 0; s < 2; ++s) {
-          if (s == 1 && b + 1 < cells[1]) continue;
-          value(x + 1, y + 2 * s, z + 1) = (corner[0][s][0] + corner[1][s][0] + corner[0][s][1] + corner[1][s][1]) / 4.0;
-        }
-        for (int s = 0; s < 2; ++s) {
-          if (s == 1 && c + 1 < cells[2]) continue;
-          value(x + 1, y + 1, z + 2 * s) = (corner[0][0][s] + corner[1][0][s] + corner[0][1][s] + corner[1][1][s]) / 4.0;
-        }
-      }
 }
 
 namespace {
@@ -86,23 +60,49 @@ TriangleMesh march_tetrahedra(const TetrahedralGrid& grid) {
   const auto nodes = grid.nodes();
   const std::uint64_t node_count = static_cast<std::uint64_t>(nodes[0]) * nodes[1] * nodes[2];
   std::unordered_map<std::uint64_t, int> edge_vertex;
-  edge_vertex.reserve(1024);
+  edge_vertex.reserve(8 * static_cast<std::size_t>(grid.cells[0] * grid.cells[1] + grid.cells[1] * grid.cells[2] + grid.cells[0] * grid.cells[2]));
+  mesh.positions.reserve(edge_vertex.bucket_count());
+  mesh.parameters.reserve(edge_vertex.bucket_count());
+  mesh.triangles.reserve(2 * edge_vertex.bucket_count());
+  mesh.parts.reserve(2 * edge_vertex.bucket_count());
 
 
   for (int c = 0; c < grid.cells[2]; ++c)
     for (int b = 0; b < grid.cells[1]; ++b)
       for (int a = 0; a < grid.cells[0]; ++a) {
         const int x = 2 * a, y = 2 * b, z = 2 * c;
-        // Skip cubes whose 15 partition vertices share one sign.
+        // The 27 doubled-grid values of the cube (edge midpoints unused). Skip cubes whose
+        // partition vertices share one sign.
+        double local[3][3][3];
         int negatives = 0;
-        for (int k = 0; k <= 2; ++k)
-          for (int j = 0; j <= 2; ++j)
-            for (int i = 0; i <= 2; ++i) {
-              const int odd = (i & 1) + (j & 1) + (k & 1);
-              if (odd == 1) continue;
-              negatives += inside(grid.value(x + i, y + j, z + k));
-            }
-        if (negatives == 0 || negatives == 15) continue;
+        if (grid.layout == TetrahedralGrid::Layout::CornersAveraged) {
+          double sum = 0.0;
+          for (int k = 0; k < 2; ++k)
+            for (int j = 0; j < 2; ++j)
+              for (int i = 0; i < 2; ++i) {
+                const double v = grid.corner(a + i, b + j, c + k);
+                local[2 * i][2 * j][2 * k] = v;
+                negatives += inside(v);
+                sum += v;
+              }
+          // Averages of values of one sign keep that sign.
+          if (negatives == 0 || negatives == 8) continue;
+          local[1][1][1] = sum / 8.0;
+          for (int s = 0; s <= 2; s += 2) {
+            local[s][1][1] = (local[s][0][0] + local[s][2][0] + local[s][0][2] + local[s][2][2]) / 4.0;
+            local[1][s][1] = (local[0][s][0] + local[2][s][0] + local[0][s][2] + local[2][s][2]) / 4.0;
+            local[1][1][s] = (local[0][0][s] + local[2][0][s] + local[0][2][s] + local[2][2][s]) / 4.0;
+          }
+        } else {
+          for (int k = 0; k <= 2; ++k)
+            for (int j = 0; j <= 2; ++j)
+              for (int i = 0; i <= 2; ++i) {
+                if ((i & 1) + (j & 1) + (k & 1) == 1) continue;
+                local[i][j][k] = grid.value(x + i, y + j, z + k);
+                negatives += inside(local[i][j][k]);
+              }
+          if (negatives == 0 || negatives == 15) continue;
+        }
         const int part = grid.cube_parts.empty()
                              ? 6
                              : grid.cube_parts[static_cast<std::size_t>(a) +
@@ -115,7 +115,7 @@ TriangleMesh march_tetrahedra(const TetrahedralGrid& grid) {
           for (int q = 0; q < 4; ++q) {
             const auto& o = tet.vertex[q];
             id[q] = grid.node_index(x + o[0], y + o[1], z + o[2]);
-            v[q] = grid.values[id[q]];
+            v[q] = local[o[0]][o[1]][o[2]];
             if (!std::isfinite(v[q])) v[q] = 1.0;
             p[q] = grid.node_position(x + o[0], y + o[1], z + o[2]);
             in += inside(v[q]);

@@ -59,7 +59,9 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
     m0[d] = static_cast<int>(first);
     cells[d] = static_cast<int>(last - first);
   }
-  TetrahedralGrid grid(fine.origin + g * Eigen::Vector3d(m0[0], m0[1], m0[2]), g, cells);
+  const bool control = options.method == ZeroSetMethod::Control;
+  TetrahedralGrid grid(fine.origin + g * Eigen::Vector3d(m0[0], m0[1], m0[2]), g, cells,
+                       control ? TetrahedralGrid::Layout::CornersAveraged : TetrahedralGrid::Layout::AllNodes);
   const auto nodes = grid.nodes();
   const auto exterior_value = [&](const Eigen::Vector3d& x) {
     return root != nullptr ? scene_value(*root, x) : std::numeric_limits<double>::quiet_NaN();
@@ -68,15 +70,15 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
     return i >= 0 && j >= 0 && k >= 0 && i < fine.size[0] && j < fine.size[1] && k < fine.size[2];
   };
 
-  if (options.method == ZeroSetMethod::Control) {
+  if (control) {
     for (int c = 0; c < nodes[2]; c += 2)
       for (int b = 0; b < nodes[1]; b += 2)
         for (int a = 0; a < nodes[0]; a += 2) {
           const Eigen::Vector3d x = grid.node_position(a, b, c);
           const int i = m0[0] + a / 2, j = m0[1] + b / 2, k = m0[2] + c / 2;
-          grid.value(a, b, c) = box.contains(x, slack) && lattice_index_valid(i, j, k) ? fine.at(i, j, k) : exterior_value(x);
+          grid.corner(a / 2, b / 2, c / 2) =
+              box.contains(x, slack) && lattice_index_valid(i, j, k) ? fine.at(i, j, k) : exterior_value(x);
         }
-    grid.average_centres();
   } else {
     const auto& stencils = node_stencils();
     for (int c = 0; c < nodes[2]; ++c)
@@ -144,6 +146,10 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
 
   out.stats.vertices = out.mesh.num_vertices();
   out.stats.triangles = out.mesh.num_triangles();
+  if (!options.statistics) {
+    out.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  }
   const EdgeStatistics edges = edge_statistics(out.mesh);
   out.stats.boundary_edges = edges.boundary_edges;
   out.stats.nonmanifold_edges = edges.nonmanifold_edges;
@@ -165,7 +171,7 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
           for (int q = 0; q < 8; ++q) {
             const int x = 2 * a + 2 * (q & 1), y = 2 * b + (q & 2), z = 2 * c + ((q & 4) >> 1);
             in_box += box.contains(grid.node_position(x, y, z), slack);
-            negative += grid.value(x, y, z) < 0.0;
+            negative += (control ? grid.corner(x / 2, y / 2, z / 2) : grid.value(x, y, z)) < 0.0;
           }
           if (in_box == 0 || in_box == 8 || negative == 0 || negative == 8) continue;
           for (int q = 0; q < 8; ++q) {

@@ -29,6 +29,9 @@ struct ZeroSetOptions {
   /// Exact method only: move each vertex onto the zero set (at most 8 Newton steps, never
   /// farther than one grid spacing).
   bool project = false;
+  /// Fill ZeroSetStats beyond counts and seconds: evaluates the spline at every vertex and checks
+  /// the edges (costs more than the meshing itself; benchmarks turn it off).
+  bool statistics = true;
 };
 
 inline constexpr int kSplineSurfacePart = 6;
