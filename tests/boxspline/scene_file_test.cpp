@@ -27,7 +27,7 @@ std::string scene_with_root(const std::string& root, const std::string& spacing 
 
 TEST(SceneFile, ExamplesParseAndRoundTrip) {
   int count = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(VOLSPLINE_SOURCE_DIR) + "/examples")) {
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(VOLSPLINE_SOURCE_DIR) + "/examples/scenes")) {
     if (entry.path().filename().string().rfind("scene-", 0) != 0) continue;
     const Scene scene = read_scene(entry.path());
     const Scene again = parse_scene(scene_to_json(scene), "again.json");

@@ -40,7 +40,7 @@ TEST(BlendCli, WritesMeshPictureAndStatistics) {
 TEST(BlendCli, ExampleScenesMeshClosed) {
   test::TemporaryDirectory dir;
   for (const char* name : {"scene-cylinder-intersection", "scene-two-tori"}) {
-    const auto r = test::run_cli(std::string("blend ") + VOLSPLINE_SOURCE_DIR + "/examples/" + name + ".json -o " +
+    const auto r = test::run_cli(std::string("blend ") + VOLSPLINE_SOURCE_DIR + "/examples/scenes/" + name + ".json -o " +
                                      (dir / "out.stl").string() + " --stats " + (dir / "s.json").string(),
                                  dir.path());
     ASSERT_EQ(r.code, 0) << r.err;
