@@ -33,10 +33,12 @@ asan: deps
 FUZZ_SECONDS ?= 60
 fuzz: deps
 	@CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVOLSPLINE_BUILD_FUZZ=ON -DVOLSPLINE_BUILD_TESTS=OFF -DVOLSPLINE_BUILD_BENCH=OFF >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz
+	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz
 	mkdir -p build-fuzz/corpus build-fuzz/corpus-mesh && cp examples/*.json build-fuzz/corpus/ 2>/dev/null || true
 	build-fuzz/bin/model_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 build-fuzz/corpus fuzz/corpus
 	build-fuzz/bin/mesh_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-mesh fuzz/corpus-mesh
+	mkdir -p build-fuzz/corpus-scene
+	build-fuzz/bin/scene_reader_fuzz -max_total_time=30 -max_len=65536 build-fuzz/corpus-scene fuzz/corpus-scene
 
 clean:
 	rm -rf $(BUILD_DIR) build-asan build-fuzz out

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "demo_blend.h"
 #include "volspline/core/error.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/construct/paper_examples.h"
@@ -76,6 +77,7 @@ void add_demo_command(CLI::App& app) {
     std::cout << "ffd-bent-bar: a 4 x 1 x 1 bar deformed by a degree (3, 2, 2) lattice with 3 cells\n  " << base.string()
               << "-lattice.json\n  " << base.string() << ".ply\n  " << base.string() << ".png\n";
     write_boundary_demo(*dir);
+    write_blend_demo(*dir);  // Peters-Wittman blends, figures 1a-4c
   });
 }
 

@@ -636,4 +636,8 @@ void write_model(const Model& model, const std::filesystem::path& path) {
   write_file_atomically(path, model_to_json(model));
 }
 
+nlohmann::json parse_json_document(std::string_view text) { return parse_json(text); }
+
+std::string describe_json_value(const nlohmann::json& value) { return describe(value); }
+
 }  // namespace volspline

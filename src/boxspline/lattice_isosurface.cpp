@@ -1,0 +1,164 @@
+#include "volspline/boxspline/lattice_isosurface.h"
+
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+#include "volspline/core/error.h"
+
+namespace volspline {
+
+TetrahedralGrid::TetrahedralGrid(const Eigen::Vector3d& o, double h, std::array<int, 3> n, Layout l)
+    : layout(l), origin(o), spacing(h), cells(n) {
+  if (!(h > 0.0) || !std::isfinite(h)) throw InvalidInput("expected a positive, finite grid spacing");
+  std::size_t total = 1;
+  for (int d = 0; d < 3; ++d) {
+    if (n[d] < 1) throw InvalidInput("expected at least one cube per axis, got " + std::to_string(n[d]));
+    total *= static_cast<std::size_t>(l == Layout::AllNodes ? 2 * n[d] + 1 : n[d] + 1);
+    if (total > (std::size_t{1} << 27))
+      throw InvalidInput("expected a grid of at most 2^27 nodes (use fewer levels or a smaller region)");
+  }
+  values.assign(total, 0.0);
+}
+
+namespace {
+
+/// The 24 tetrahedra of a cube as offsets on the doubled grid from the cube's lowest corner:
+/// C the centre, F a face centre, A and B the ends of an edge of that face.
+struct Tetrahedron {
+  std::array<std::array<int, 3>, 4> vertex;
+};
+
+std::array<Tetrahedron, 24> cube_tetrahedra() {
+  std::array<Tetrahedron, 24> out{};
+  int n = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int si = -1; si <= 1; si += 2)
+      for (int jslot = 0; jslot < 2; ++jslot)
+        for (int sj = -1; sj <= 1; sj += 2) {
+          const int j = jslot == 0 ? (i + 1) % 3 : (i + 2) % 3, k = 3 - i - j;
+          std::array<int, 3> c{1, 1, 1};
+          std::array<int, 3> f = c;
+          f[i] += si;
+          std::array<int, 3> a = f, b = f;
+          a[j] += sj, b[j] += sj;
+          a[k] -= 1, b[k] += 1;
+          out[n++].vertex = {c, f, a, b};
+        }
+  return out;
+}
+
+bool inside(double v) { return v < 0.0; }
+
+}  // namespace
+
+TriangleMesh march_tetrahedra(const TetrahedralGrid& grid) {
+  static const std::array<Tetrahedron, 24> tetrahedra = cube_tetrahedra();
+  TriangleMesh mesh;
+  const auto nodes = grid.nodes();
+  const std::uint64_t node_count = static_cast<std::uint64_t>(nodes[0]) * nodes[1] * nodes[2];
+  std::unordered_map<std::uint64_t, int> edge_vertex;
+  edge_vertex.reserve(8 * static_cast<std::size_t>(grid.cells[0] * grid.cells[1] + grid.cells[1] * grid.cells[2] + grid.cells[0] * grid.cells[2]));
+  mesh.positions.reserve(edge_vertex.bucket_count());
+  mesh.parameters.reserve(edge_vertex.bucket_count());
+  mesh.triangles.reserve(2 * edge_vertex.bucket_count());
+  mesh.parts.reserve(2 * edge_vertex.bucket_count());
+
+
+  for (int c = 0; c < grid.cells[2]; ++c)
+    for (int b = 0; b < grid.cells[1]; ++b)
+      for (int a = 0; a < grid.cells[0]; ++a) {
+        const int x = 2 * a, y = 2 * b, z = 2 * c;
+        // The 27 doubled-grid values of the cube (edge midpoints unused). Skip cubes whose
+        // partition vertices share one sign.
+        double local[3][3][3];
+        int negatives = 0;
+        if (grid.layout == TetrahedralGrid::Layout::CornersAveraged) {
+          double sum = 0.0;
+          for (int k = 0; k < 2; ++k)
+            for (int j = 0; j < 2; ++j)
+              for (int i = 0; i < 2; ++i) {
+                const double v = grid.corner(a + i, b + j, c + k);
+                local[2 * i][2 * j][2 * k] = v;
+                negatives += inside(v);
+                sum += v;
+              }
+          // Averages of values of one sign keep that sign.
+          if (negatives == 0 || negatives == 8) continue;
+          local[1][1][1] = sum / 8.0;
+          for (int s = 0; s <= 2; s += 2) {
+            local[s][1][1] = (local[s][0][0] + local[s][2][0] + local[s][0][2] + local[s][2][2]) / 4.0;
+            local[1][s][1] = (local[0][s][0] + local[2][s][0] + local[0][s][2] + local[2][s][2]) / 4.0;
+            local[1][1][s] = (local[0][0][s] + local[2][0][s] + local[0][2][s] + local[2][2][s]) / 4.0;
+          }
+        } else {
+          for (int k = 0; k <= 2; ++k)
+            for (int j = 0; j <= 2; ++j)
+              for (int i = 0; i <= 2; ++i) {
+                if ((i & 1) + (j & 1) + (k & 1) == 1) continue;
+                local[i][j][k] = grid.value(x + i, y + j, z + k);
+                negatives += inside(local[i][j][k]);
+              }
+          if (negatives == 0 || negatives == 15) continue;
+        }
+        const int part = grid.cube_parts.empty()
+                             ? 6
+                             : grid.cube_parts[static_cast<std::size_t>(a) +
+                                               grid.cells[0] * (static_cast<std::size_t>(b) + grid.cells[1] * static_cast<std::size_t>(c))];
+        for (const Tetrahedron& tet : tetrahedra) {
+          std::size_t id[4];
+          double v[4];
+          Eigen::Vector3d p[4];
+          int in = 0;
+          for (int q = 0; q < 4; ++q) {
+            const auto& o = tet.vertex[q];
+            id[q] = grid.node_index(x + o[0], y + o[1], z + o[2]);
+            v[q] = local[o[0]][o[1]][o[2]];
+            if (!std::isfinite(v[q])) v[q] = 1.0;
+            p[q] = grid.node_position(x + o[0], y + o[1], z + o[2]);
+            in += inside(v[q]);
+          }
+          if (in == 0 || in == 4) continue;
+          const auto edge = [&](int q0, int q1) {
+            std::size_t n0 = id[q0], n1 = id[q1];
+            int r0 = q0, r1 = q1;
+            if (n0 > n1) std::swap(n0, n1), std::swap(r0, r1);
+            const std::uint64_t key = static_cast<std::uint64_t>(n0) * node_count + n1;
+            const auto [it, added] = edge_vertex.try_emplace(key, 0);
+            if (added) {
+              const double t = v[r0] / (v[r0] - v[r1]);
+              const Eigen::Vector3d position = p[r0] + t * (p[r1] - p[r0]);
+              it->second = mesh.add_vertex(position, position);
+            }
+            return it->second;
+          };
+          // A positive vertex orients each triangle: its normal points towards it.
+          int outside_vertex = 0;
+          while (inside(v[outside_vertex])) ++outside_vertex;
+          const auto emit = [&](int i0, int i1, int i2) {
+            const Eigen::Vector3d& a0 = mesh.positions[static_cast<std::size_t>(i0)];
+            const Eigen::Vector3d n = (mesh.positions[static_cast<std::size_t>(i1)] - a0).cross(mesh.positions[static_cast<std::size_t>(i2)] - a0);
+            if (n.dot(p[outside_vertex] - a0) >= 0.0) mesh.add_triangle(i0, i1, i2, part);
+            else mesh.add_triangle(i0, i2, i1, part);
+          };
+          int ins[4], outs[4], ni = 0, no = 0;
+          for (int q = 0; q < 4; ++q) (inside(v[q]) ? ins[ni++] : outs[no++]) = q;
+          if (ni == 1 || no == 1) {
+            const int lone = ni == 1 ? ins[0] : outs[0];
+            const int* others = ni == 1 ? outs : ins;
+            emit(edge(lone, others[0]), edge(lone, others[1]), edge(lone, others[2]));
+          } else {
+            // Two inside (i0, i1), two outside (o0, o1): the quadrilateral i0o0, i0o1, i1o1, i1o0.
+            const int e0 = edge(ins[0], outs[0]), e1 = edge(ins[0], outs[1]), e2 = edge(ins[1], outs[1]),
+                      e3 = edge(ins[1], outs[0]);
+            emit(e0, e1, e2);
+            emit(e0, e2, e3);
+          }
+        }
+      }
+  return mesh;
+}
+
+}  // namespace volspline
