@@ -44,6 +44,24 @@ TensorSpline<D> append_coordinates(const TensorSpline<D>& geometry, const std::v
   return TensorSpline<D>(geometry.knot_vectors(), static_cast<int>(m), std::move(points), geometry.weights());
 }
 
+template <int D>
+std::pair<TensorSpline<D>, std::vector<std::vector<double>>> split_coordinates(const TensorSpline<D>& spline, int dimension) {
+  const int m = spline.dimension();
+  if (dimension < 1 || dimension > m) {
+    throw InvalidInput("expected to keep 1 to " + std::to_string(m) + " coordinates, got " + std::to_string(dimension));
+  }
+  const auto n = static_cast<std::size_t>(spline.num_control_points_total());
+  const auto k = static_cast<std::size_t>(dimension);
+  const auto mm = static_cast<std::size_t>(m);
+  std::vector<double> points(n * k);
+  std::vector<std::vector<double>> fields(mm - k, std::vector<double>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t c = 0; c < k; ++c) points[i * k + c] = spline.points()[i * mm + c];
+    for (std::size_t f = 0; f < mm - k; ++f) fields[f][i] = spline.points()[i * mm + k + f];
+  }
+  return {TensorSpline<D>(spline.knot_vectors(), dimension, std::move(points), spline.weights()), std::move(fields)};
+}
+
 template TensorSpline<1> attribute_spline(const TensorSpline<1>&, const std::vector<double>&);
 template TensorSpline<2> attribute_spline(const TensorSpline<2>&, const std::vector<double>&);
 template TensorSpline<3> attribute_spline(const TensorSpline<3>&, const std::vector<double>&);
@@ -52,5 +70,9 @@ template TensorSpline<1> append_coordinates(const TensorSpline<1>&, const std::v
 template TensorSpline<2> append_coordinates(const TensorSpline<2>&, const std::vector<std::vector<double>>&);
 template TensorSpline<3> append_coordinates(const TensorSpline<3>&, const std::vector<std::vector<double>>&);
 template TensorSpline<4> append_coordinates(const TensorSpline<4>&, const std::vector<std::vector<double>>&);
+template std::pair<TensorSpline<1>, std::vector<std::vector<double>>> split_coordinates(const TensorSpline<1>&, int);
+template std::pair<TensorSpline<2>, std::vector<std::vector<double>>> split_coordinates(const TensorSpline<2>&, int);
+template std::pair<TensorSpline<3>, std::vector<std::vector<double>>> split_coordinates(const TensorSpline<3>&, int);
+template std::pair<TensorSpline<4>, std::vector<std::vector<double>>> split_coordinates(const TensorSpline<4>&, int);
 
 }  // namespace volspline

@@ -4,6 +4,7 @@
 // rational spline that means the value joins the homogeneous point (w x, w a, w), so the field is
 //   a(t) = sum_i N_i(t) w_i a_i / sum_i N_i(t) w_i
 // with the weights of the geometry (Lasser 1994, eq. 4 applied to an extra coordinate).
+#include <utility>
 #include <vector>
 
 #include "volspline/spline/tensor_spline.h"
@@ -23,5 +24,11 @@ TensorSpline<D> attribute_spline(const TensorSpline<D>& geometry, const std::vec
 /// \throw InvalidInput if a field has the wrong count or a value that is not finite.
 template <int D>
 TensorSpline<D> append_coordinates(const TensorSpline<D>& geometry, const std::vector<std::vector<double>>& fields);
+
+/// The inverse of append_coordinates: the first `dimension` coordinates as a spline (same knots
+/// and weights) and each further coordinate as one field of control values.
+/// \throw InvalidInput unless 1 <= dimension <= spline.dimension().
+template <int D>
+std::pair<TensorSpline<D>, std::vector<std::vector<double>>> split_coordinates(const TensorSpline<D>& spline, int dimension);
 
 }  // namespace volspline
