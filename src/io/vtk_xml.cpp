@@ -288,8 +288,9 @@ class VtuReader {
 
   std::vector<double> numbers(const xml_node& array, std::uint64_t expected, const std::string& what) const {
     check_ascii(array);
+    const std::string text = detail::element_text(array);
     std::vector<double> values;
-    for (std::string_view token : detail::tokens_of(detail::element_text(array))) {
+    for (std::string_view token : detail::tokens_of(text)) {
       if (token == "nan" || token == "NaN") {
         values.push_back(std::numeric_limits<double>::quiet_NaN());
         continue;
@@ -306,8 +307,9 @@ class VtuReader {
 
   std::vector<long long> integers(const xml_node& array, std::uint64_t expected, long long lo, long long hi, const std::string& what) const {
     check_ascii(array);
+    const std::string text = detail::element_text(array);
     std::vector<long long> values;
-    for (std::string_view token : detail::tokens_of(detail::element_text(array))) {
+    for (std::string_view token : detail::tokens_of(text)) {
       const auto value = detail::parse_integer(token, lo, hi);
       if (!value) fail(array, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " + detail::quoted_token(token));
       values.push_back(*value);
