@@ -29,16 +29,21 @@ asan: deps
 	@cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer targets built with clang; FUZZ_SECONDS per target.
+# libFuzzer targets built with clang; FUZZ_SECONDS per target (EXCHANGE_FUZZ_SECONDS for the
+# G+Smo, IRIT and VTU readers).
 FUZZ_SECONDS ?= 60
+EXCHANGE_FUZZ_SECONDS ?= 30
 fuzz: deps
 	@CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVOLSPLINE_BUILD_FUZZ=ON -DVOLSPLINE_BUILD_TESTS=OFF -DVOLSPLINE_BUILD_BENCH=OFF >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz
+	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz gismo_xml_fuzz irit_itd_fuzz vtu_reader_fuzz
 	mkdir -p build-fuzz/corpus build-fuzz/corpus-mesh && cp examples/*.json build-fuzz/corpus/ 2>/dev/null || true
 	build-fuzz/bin/model_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 build-fuzz/corpus fuzz/corpus
 	build-fuzz/bin/mesh_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-mesh fuzz/corpus-mesh
-	mkdir -p build-fuzz/corpus-scene
-	build-fuzz/bin/scene_reader_fuzz -max_total_time=30 -max_len=65536 build-fuzz/corpus-scene fuzz/corpus-scene
+	mkdir -p build-fuzz/corpus-scene build-fuzz/corpus-gismo build-fuzz/corpus-irit build-fuzz/corpus-vtu
+	build-fuzz/bin/scene_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 build-fuzz/corpus-scene fuzz/corpus-scene
+	build-fuzz/bin/gismo_xml_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-gismo fuzz/corpus-gismo
+	build-fuzz/bin/irit_itd_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-irit fuzz/corpus-irit
+	build-fuzz/bin/vtu_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-vtu fuzz/corpus-vtu
 
 clean:
 	rm -rf $(BUILD_DIR) build-asan build-fuzz out

@@ -1,9 +1,12 @@
-// volspline convert MODEL -o OUT.json [--insert-knots DIR:V,...] [--elevate DIR:TIMES] [--bezier]
+// volspline convert MODEL -o OUT [--format F] [--input-format F] [--insert-knots DIR:V,...]
+// [--elevate DIR:TIMES] [--bezier]; formats by extension from io/model_formats.h.
 #include <iostream>
 
 #include "cli_support.h"
 #include "commands.h"
 #include "volspline/core/error.h"
+#include "volspline/io/model_formats.h"
+#include "volspline/spline/attribute_spline.h"
 #include "volspline/spline/bezier_extraction.h"
 #include "volspline/spline/degree_elevation.h"
 #include "volspline/spline/knot_insertion.h"
@@ -28,14 +31,22 @@ std::pair<int, std::string> split_direction(const std::string& text, const std::
 }  // namespace
 
 void add_convert_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("convert", "Rewrite a model: insert knots, elevate degrees, split into Bézier pieces (geometry unchanged)");
+  auto* cmd = app.add_subcommand("convert", "Rewrite a model, in another format or refined: insert knots, elevate degrees, split into Bézier pieces (geometry unchanged)");
+  std::string formats;
+  for (const ModelFormat& f : model_formats()) {
+    formats += std::string(formats.empty() ? "" : ", ") + f.name + " (" + f.extension + ")";
+  }
   auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto inserts = std::make_shared<std::vector<std::string>>();
   auto elevations = std::make_shared<std::vector<std::string>>();
   auto bezier = std::make_shared<bool>(false);
-  cmd->add_option("MODEL", *in, "input model file")->required();
-  cmd->add_option("-o,--output", *out, "output model file (.json)")->required();
+  auto format = std::make_shared<std::string>();
+  auto input_format = std::make_shared<std::string>();
+  cmd->add_option("MODEL", *in, "input model file; its format from the extension: " + formats)->required();
+  cmd->add_option("-o,--output", *out, "output file; its format from the extension")->required();
+  cmd->add_option("--format", *format, "output format, overriding the extension: json, gismo, irit or vtu");
+  cmd->add_option("--input-format", *input_format, "input format, overriding the extension");
   cmd->add_option("--insert-knots", *inserts, "DIR:VALUE[,VALUE...] knots to insert in direction u, v or w; repeatable");
   cmd->add_option("--elevate", *elevations, "DIR:TIMES raise the degree in a direction; repeatable");
   cmd->add_flag("--bezier", *bezier, "write every nonempty knot cell as its own bezier_* object (after the other steps)");
@@ -49,7 +60,13 @@ void add_convert_command(CLI::App& app) {
       auto [d, rest] = split_direction(s, "--elevate");
       steps.push_back({d, {}, parse_integers(rest, 1, 1, "--elevate")[0]});
     }
-    Model model = read_model(*in);
+    // Unknown formats are reported before any work.
+    if (!format->empty()) {
+      model_format_named(*format);
+    } else {
+      model_format_from_path(*out);
+    }
+    Model model = read_model_file(*in, *input_format);
     Model result;
     result.metadata = model.metadata;
     for (std::size_t i = 0; i < model.objects.size(); ++i) {
@@ -57,8 +74,29 @@ void add_convert_command(CLI::App& app) {
       const std::string where = *in + ": objects[" + std::to_string(i) + "]";
       try {
       std::visit(
-          [&](auto& s) {
-            using Spline = std::decay_t<decltype(s)>;
+          [&](auto& geometry) {
+            using Spline = std::decay_t<decltype(geometry)>;
+            // Attributes ride along as extra coordinates, so every step transforms them exactly
+            // as it transforms the geometry.
+            std::vector<std::string> names;
+            std::vector<std::vector<double>> fields;
+            for (const auto& [name, values] : object.attributes) {
+              names.push_back(name);
+              fields.push_back(values);
+            }
+            validate_attributes(object);
+            const int k = geometry.dimension();
+            Spline s = fields.empty() ? geometry : append_coordinates(geometry, fields);
+            const auto store = [&](ModelObject& target, const Spline& augmented) {
+              if (names.empty()) {
+                target.spline = augmented;
+                return;
+              }
+              auto [spline, values] = split_coordinates(augmented, k);
+              target.spline = std::move(spline);
+              target.attributes.clear();
+              for (std::size_t f = 0; f < names.size(); ++f) target.attributes[names[f]] = std::move(values[f]);
+            };
             for (const auto& step : steps) {
               if (step.direction >= Spline::num_parameters)
                 throw InvalidInput("direction " + std::to_string(step.direction) + " does not exist for a " +
@@ -68,14 +106,17 @@ void add_convert_command(CLI::App& app) {
             }
             if (!*bezier) {
               object.bezier = object.bezier && std::all_of(s.knot_vectors().begin(), s.knot_vectors().end(),
-                                                           [](const KnotVector& k) { return k.is_bezier(); });
-              result.objects.push_back(object);
+                                                           [](const KnotVector& kv) { return kv.is_bezier(); });
+              ModelObject converted = object;
+              store(converted, s);
+              result.objects.push_back(std::move(converted));
               return;
             }
             const auto pieces = bezier_pieces(s);
             for (std::size_t c = 0; c < pieces.size(); ++c) {
               ModelObject piece{object.name.empty() ? "" : object.name + " cell " + std::to_string(c), true,
-                                reparameterize_to_unit_box(pieces[c]), object.metadata};
+                                geometry, object.metadata};
+              store(piece, reparameterize_to_unit_box(pieces[c]));
               result.objects.push_back(std::move(piece));
             }
           },
@@ -84,7 +125,7 @@ void add_convert_command(CLI::App& app) {
         throw e.located(where);
       }
     }
-    write_model(result, *out);
+    write_model_file(result, *out, *format);
     std::cout << "wrote " << *out << " (" << result.objects.size() << " object(s))\n";
   });
 }

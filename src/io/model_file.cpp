@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <utility>
 
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/spline/attribute_spline.h"
 
 namespace volspline {
 
@@ -412,9 +414,23 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
   }
 }
 
+/// "attributes": an object of named arrays, one finite number per control point each.
+std::map<std::string, std::vector<double>> read_attributes(const json& value, const std::string& path, int count) {
+  if (!value.is_object()) fail("an object of named arrays of numbers (one number per control point)", value, path);
+  std::map<std::string, std::vector<double>> attributes;
+  for (const auto& item : value.items()) {
+    const std::string at = key_path(path, item.key());
+    if (item.key().empty()) throw InvalidInput("expected a nonempty attribute name, got \"\"", at);
+    const std::string what = "an array of " + std::to_string(count) + " numbers (one per control point)";
+    if (!item.value().is_array() || item.value().size() != static_cast<std::size_t>(count)) fail(what, item.value(), at);
+    attributes.emplace(item.key(), numbers(item.value(), at, what));
+  }
+  return attributes;
+}
+
 ModelObject read_object(const json& object, const std::string& path) {
   if (!object.is_object()) fail("an object (a curve, surface or volume)", object, path);
-  check_keys(object, path, {"name", "type", "degree", "knots", "control_points", "weights", "metadata"});
+  check_keys(object, path, {"name", "type", "degree", "knots", "control_points", "weights", "attributes", "metadata"});
 
   const json& type_json = required(object, "type", path, "one of bspline_curve, bspline_surface, bspline_volume, "
                                                          "bezier_curve, bezier_surface, bezier_volume");
@@ -447,7 +463,12 @@ ModelObject read_object(const json& object, const std::string& path) {
         return read_spline<3>(object, path, *type);
     }
   };
-  return ModelObject{std::move(name), type->bezier, spline(), std::move(object_metadata)};
+  ModelObject result{std::move(name), type->bezier, spline(), std::move(object_metadata)};
+  if (const auto it = object.find("attributes"); it != object.end()) {
+    result.attributes = read_attributes(*it, key_path(path, "attributes"),
+                                        std::visit([](const auto& s) { return s.num_control_points_total(); }, result.spline));
+  }
+  return result;
 }
 
 Model read_document(const json& root) {
@@ -580,6 +601,24 @@ void write_spline(std::ostringstream& out, const TensorSpline<D>& spline, bool b
   }
 }
 
+void write_attributes(std::ostringstream& out, const ModelObject& object, const std::string& path,
+                      const std::string& indent) {
+  try {
+    validate_attributes(object);
+  } catch (const InvalidInput& e) {
+    throw e.located(path);
+  }
+  out << ",\n" << indent << "\"attributes\": {\n";
+  std::size_t i = 0;
+  for (const auto& [name, values] : object.attributes) {
+    const std::string at = key_path(key_path(path, "attributes"), name);
+    out << indent << "  " << json_text(json(name), at, indent, false) << ": ";
+    write_numbers(out, values.data(), values.size(), indent + "  ");
+    out << (++i < object.attributes.size() ? ",\n" : "\n");
+  }
+  out << indent << "}";
+}
+
 }  // namespace
 
 Model parse_model(std::string_view text, const std::string& source_name) {
@@ -607,6 +646,56 @@ std::string object_type_name(const ModelObject& object) {
       object.spline);
 }
 
+void validate_attributes(const ModelObject& object) {
+  const int count = std::visit([](const auto& s) { return s.num_control_points_total(); }, object.spline);
+  for (const auto& [name, values] : object.attributes) {
+    const std::string at = key_path("attributes", name);
+    if (name.empty()) throw InvalidInput("expected a nonempty attribute name, got \"\"", at);
+    if (values.size() != static_cast<std::size_t>(count)) {
+      throw InvalidInput("expected " + std::to_string(count) + " values (one per control point), got " +
+                             std::to_string(values.size()),
+                         at);
+    }
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (!std::isfinite(values[i])) {
+        throw InvalidInput("expected a finite number, got " + format_double(values[i]), index_path(at, i));
+      }
+    }
+  }
+}
+
+double evaluate_attribute(const ModelObject& object, const std::string& name, const std::vector<double>& t) {
+  const auto it = object.attributes.find(name);
+  if (it == object.attributes.end()) {
+    std::string names;
+    for (const auto& item : object.attributes) names += (names.empty() ? "" : ", ") + item.first;
+    throw InvalidInput("no attribute " + json_quoted(name) + " (the object has " +
+                       (names.empty() ? std::string("none") : names) + ")");
+  }
+  return std::visit(
+      [&](const auto& spline) {
+        using Spline = std::decay_t<decltype(spline)>;
+        constexpr int D = Spline::num_parameters;
+        if (t.size() != static_cast<std::size_t>(D)) {
+          throw InvalidInput("expected " + std::to_string(D) + " parameter values for a " + object_type_name(object) +
+                             ", got " + std::to_string(t.size()));
+        }
+        typename Spline::Parameter parameter{};
+        std::copy(t.begin(), t.end(), parameter.begin());
+        spline.check_in_domain(parameter);
+        std::optional<Spline> field;
+        try {
+          field.emplace(attribute_spline(spline, it->second));
+        } catch (const InvalidInput& e) {
+          throw e.located(key_path("attributes", name));
+        }
+        double value = 0.0;
+        field->evaluate(parameter, &value);
+        return value;
+      },
+      object.spline);
+}
+
 std::string model_to_json(const Model& model) {
   if (model.objects.empty()) throw InvalidInput("expected at least one object, got none", "objects");
   std::ostringstream out;
@@ -623,6 +712,7 @@ std::string model_to_json(const Model& model) {
     out << indent << "\"type\": \"" << type << "\",\n";
     const bool bezier = type.rfind("bezier_", 0) == 0;
     std::visit([&](const auto& spline) { write_spline(out, spline, bezier, indent, path); }, object.spline);
+    if (!object.attributes.empty()) write_attributes(out, object, path, indent);
     if (!object.metadata.is_null()) write_metadata(out, object.metadata, key_path(path, "metadata"), indent);
     out << "\n    }" << (i + 1 < model.objects.size() ? ",\n" : "\n");
   }

@@ -670,6 +670,8 @@ TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format, const std::st
       return parse_obj(bytes, source);
     case MeshFormat::Stl:
       return parse_stl(bytes, source);
+    case MeshFormat::Glb:
+      throw InvalidInput("glTF (.glb) meshes are written, not read: give a .ply, .obj or .stl file", source);
   }
   throw InvalidInput("unknown mesh format", source);
 }

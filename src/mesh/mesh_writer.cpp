@@ -4,6 +4,7 @@
 #include <bit>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -11,10 +12,13 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <sstream>
+#include <tiny_gltf.h>
 
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/mesh/mesh_checks.h"
+#include "volspline/render/mesh_renderer.h"
 
 namespace volspline {
 
@@ -75,8 +79,9 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
   if (extension == ".ply") return MeshFormat::Ply;
   if (extension == ".obj") return MeshFormat::Obj;
   if (extension == ".stl") return MeshFormat::Stl;
+  if (extension == ".glb") return MeshFormat::Glb;
   throw InvalidInput("cannot tell the mesh format of '" + path.string() +
-                     "': expected the extension .ply, .obj or .stl");
+                     "': expected the extension .ply, .obj, .stl or .glb");
 }
 
 std::string ply_bytes(const TriangleMesh& mesh, bool ascii) {
@@ -203,6 +208,148 @@ std::string stl_bytes(const TriangleMesh& mesh, bool ascii) {
   return out;
 }
 
+namespace {
+
+/// glTF colours are linear (glTF 2.0, "Meshes": COLOR_0), part_color's are sRGB.
+double linear_from_srgb(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+template <class T>
+void append_raw(std::vector<unsigned char>& out, T value) {
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, &value, sizeof(T));
+  if constexpr (std::endian::native == std::endian::big) std::reverse(out.begin() + static_cast<std::ptrdiff_t>(at), out.end());
+}
+
+int add_view(tinygltf::Model& model, std::size_t offset, std::size_t length, int target) {
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = offset;
+  view.byteLength = length;
+  view.target = target;
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int add_accessor(tinygltf::Model& model, int view, int component, std::size_t count, int type) {
+  tinygltf::Accessor accessor;
+  accessor.bufferView = view;
+  accessor.componentType = component;
+  accessor.count = count;
+  accessor.type = type;
+  model.accessors.push_back(accessor);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
+
+}  // namespace
+
+std::string glb_bytes(const TriangleMesh& mesh) {
+  validate_mesh(mesh);
+  if (mesh.num_triangles() * 3 > std::numeric_limits<std::uint32_t>::max()) {
+    throw InvalidInput("glTF indices are 32-bit: the mesh has too many triangles (" + std::to_string(mesh.num_triangles()) + ")");
+  }
+  // One glTF vertex per (vertex, part): colours and normals belong to a part.
+  std::map<std::pair<int, int>, std::uint32_t> split;
+  std::vector<int> source;
+  std::vector<int> part_of;
+  std::vector<std::uint32_t> indices;
+  indices.reserve(3 * mesh.num_triangles());
+  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+    for (const int v : mesh.triangles[t]) {
+      const auto [it, added] = split.try_emplace({v, mesh.parts[t]}, static_cast<std::uint32_t>(source.size()));
+      if (added) {
+        source.push_back(v);
+        part_of.push_back(mesh.parts[t]);
+      }
+      indices.push_back(it->second);
+    }
+  }
+  std::vector<Eigen::Vector3d> normals(source.size(), Eigen::Vector3d::Zero());
+  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    // The cross product's length is twice the area: an area-weighted sum.
+    const Eigen::Vector3d n = (mesh.positions[tri[1]] - mesh.positions[tri[0]]).cross(mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+    for (int c = 0; c < 3; ++c) normals[indices[3 * t + static_cast<std::size_t>(c)]] += n;
+  }
+  std::vector<unsigned char> bytes;
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d high = -low;
+  for (const int v : source) {
+    for (int i = 0; i < 3; ++i) append_raw(bytes, static_cast<float>(mesh.positions[v][i]));
+    low = low.cwiseMin(mesh.positions[v].cast<float>().cast<double>());
+    high = high.cwiseMax(mesh.positions[v].cast<float>().cast<double>());
+  }
+  const std::size_t normals_at = bytes.size();
+  for (const Eigen::Vector3d& n : normals) {
+    // glTF requires unit normals; a vertex of degenerate triangles only gets an arbitrary one.
+    const Eigen::Vector3d unit = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
+    for (int i = 0; i < 3; ++i) append_raw(bytes, static_cast<float>(unit[i]));
+  }
+  const std::size_t colors_at = bytes.size();
+  for (const int part : part_of) {
+    const Eigen::Vector3d srgb = part_color(part);
+    for (int i = 0; i < 3; ++i) append_raw(bytes, static_cast<float>(linear_from_srgb(srgb[i])));
+  }
+  const std::size_t indices_at = bytes.size();
+  for (const std::uint32_t index : indices) append_raw(bytes, index);
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "volspline";
+  tinygltf::Buffer buffer;
+  buffer.data = std::move(bytes);
+  const std::size_t total = buffer.data.size();
+  model.buffers.push_back(std::move(buffer));
+  const std::size_t n = source.size();
+  const int positions = add_accessor(model, add_view(model, 0, normals_at, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                     TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3);
+  if (n > 0) {
+    model.accessors[static_cast<std::size_t>(positions)].minValues = {low.x(), low.y(), low.z()};
+    model.accessors[static_cast<std::size_t>(positions)].maxValues = {high.x(), high.y(), high.z()};
+  }
+  const int normal = add_accessor(model, add_view(model, normals_at, colors_at - normals_at, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                  TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3);
+  const int color = add_accessor(model, add_view(model, colors_at, indices_at - colors_at, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                 TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3);
+  const int index = add_accessor(model, add_view(model, indices_at, total - indices_at, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, indices.size(), TINYGLTF_TYPE_SCALAR);
+
+  tinygltf::Material material;
+  material.name = "volspline parts";
+  material.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  material.pbrMetallicRoughness.roughnessFactor = 0.6;
+  // Boundary meshes of folded solids are not always consistently oriented.
+  material.doubleSided = true;
+  model.materials.push_back(material);
+
+  tinygltf::Primitive primitive;
+  primitive.attributes["POSITION"] = positions;
+  primitive.attributes["NORMAL"] = normal;
+  primitive.attributes["COLOR_0"] = color;
+  primitive.indices = index;
+  primitive.material = 0;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  tinygltf::Mesh gltf_mesh;
+  gltf_mesh.name = "volspline boundary";
+  gltf_mesh.primitives.push_back(primitive);
+  model.meshes.push_back(gltf_mesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  std::ostringstream out(std::ios::binary);
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, out, false, true)) throw Error("tinygltf could not write the glTF model");
+  return out.str();
+}
+
 std::string mesh_bytes(const TriangleMesh& mesh, MeshFormat format,
                        const MeshWriteOptions& options) {
   switch (format) {
@@ -212,6 +359,8 @@ std::string mesh_bytes(const TriangleMesh& mesh, MeshFormat format,
       return obj_bytes(mesh);
     case MeshFormat::Stl:
       return stl_bytes(mesh, options.ascii);
+    case MeshFormat::Glb:
+      return glb_bytes(mesh);
   }
   throw InvalidInput("unknown mesh format");
 }
@@ -226,6 +375,10 @@ void write_obj(const TriangleMesh& mesh, const std::filesystem::path& path) {
 
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path, bool ascii) {
   write_file_atomically(path, stl_bytes(mesh, ascii));
+}
+
+void write_glb(const TriangleMesh& mesh, const std::filesystem::path& path) {
+  write_file_atomically(path, glb_bytes(mesh));
 }
 
 void write_mesh(const TriangleMesh& mesh, const std::filesystem::path& path,

@@ -3,6 +3,7 @@
 // and volumes. The format, every key and the error messages are described in
 // docs/model-format.md; storage order and domain conventions: core/conventions.h.
 #include <filesystem>
+#include <map>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -27,6 +28,10 @@ struct ModelObject {
   SplineObject spline;
   /// The object's "metadata": a JSON object, or null if absent.
   nlohmann::json metadata;
+  /// The object's "attributes": named scalars, one value per control point (u fastest), that
+  /// vary over the object with the same basis as its geometry (evaluate_attribute). Empty if
+  /// absent.
+  std::map<std::string, std::vector<double>> attributes{};
 };
 
 /// A whole model file.
@@ -76,5 +81,17 @@ nlohmann::json parse_json_document(std::string_view text);
 /// A JSON value described for an error message: "null", "3.5", "the string \"x\"", "an array
 /// of 2 elements", "an object".
 std::string describe_json_value(const nlohmann::json& value);
+
+/// The value of the attribute `name` of `object` at the parameter `t` (one number per parameter
+/// direction of the object). The attribute is interpolated like a coordinate of the control
+/// points: with the same B-spline basis and, for a rational object, the same weights, so
+/// a(t) = sum_i N_i(t) w_i a_i / sum_i N_i(t) w_i (see attribute_spline).
+/// \throw InvalidInput if the object has no such attribute, t has the wrong number of values or
+/// lies outside the domain, or the attribute has the wrong number of values.
+double evaluate_attribute(const ModelObject& object, const std::string& name, const std::vector<double>& t);
+
+/// Checks every attribute of `object`: one finite value per control point and a nonempty name.
+/// \throw InvalidInput located at "attributes.NAME" (or "attributes.NAME[i]") otherwise.
+void validate_attributes(const ModelObject& object);
 
 }  // namespace volspline

@@ -1,6 +1,7 @@
 #pragma once
-// Export of boundary meshes to the three formats other tools read: PLY keeps everything volspline
-// knows (positions, parameters, parts), OBJ and STL trade information for reach. Every writer
+// Export of boundary meshes to the formats other tools read: PLY keeps everything volspline
+// knows (positions, parameters, parts), OBJ and STL trade information for reach, binary glTF
+// (.glb) carries normals and colours for viewers on the web and in game engines. Every writer
 // also has a `*_bytes` form returning the file contents, which is what the path form writes
 // (atomically, see io/atomic_file.h).
 #include <filesystem>
@@ -10,9 +11,9 @@
 
 namespace volspline {
 
-enum class MeshFormat { Ply, Obj, Stl };
+enum class MeshFormat { Ply, Obj, Stl, Glb };
 
-/// The format named by the extension of `path` (.ply, .obj or .stl, any letter case).
+/// The format named by the extension of `path` (.ply, .obj, .stl or .glb, any letter case).
 /// \throw InvalidInput naming the path and the accepted extensions otherwise.
 MeshFormat mesh_format_from_path(const std::filesystem::path& path);
 
@@ -33,6 +34,15 @@ std::string obj_bytes(const TriangleMesh& mesh);
 /// Coordinates are single precision in binary STL; parameters and parts are not written.
 std::string stl_bytes(const TriangleMesh& mesh, bool ascii = false);
 
+/// Binary glTF 2.0 (.glb, written with tinygltf): one mesh of indexed triangles with POSITION,
+/// NORMAL and COLOR_0 (single precision). Every triangle's corners carry the colour of its part
+/// (part_color of render/mesh_renderer.h, converted from sRGB to glTF's linear colour space), so
+/// a vertex shared by two parts is written once per part; normals are area-weighted averages
+/// over the triangles of the same part around a vertex, so the seams between parts stay sharp.
+/// Parameters are not written.
+/// \throw InvalidInput if the mesh is malformed, Error if tinygltf fails.
+std::string glb_bytes(const TriangleMesh& mesh);
+
 /// The bytes of `mesh` in `format`.
 std::string mesh_bytes(const TriangleMesh& mesh, MeshFormat format,
                        const MeshWriteOptions& options = {});
@@ -43,6 +53,7 @@ std::string mesh_bytes(const TriangleMesh& mesh, MeshFormat format,
 void write_ply(const TriangleMesh& mesh, const std::filesystem::path& path, bool ascii = false);
 void write_obj(const TriangleMesh& mesh, const std::filesystem::path& path);
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path, bool ascii = false);
+void write_glb(const TriangleMesh& mesh, const std::filesystem::path& path);
 
 /// Writes `mesh` in the format named by the extension of `path` (mesh_format_from_path).
 /// \throw InvalidInput for an unknown extension or a malformed mesh, IoError if it cannot be
