@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "volspline/core/bernstein_tensor.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
@@ -16,11 +17,6 @@ constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;
 // Higham's gamma_k = k u / (1 - k u): the relative error of k chained roundings.
 double gamma(double k) { return k * kUnitRoundoff / (1 - k * kUnitRoundoff); }
 
-double binomial(int n, int k) {
-  double b = 1;
-  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;  // integers far below 2^53: exact
-  return b;
-}
 
 // A tensor of scaled Bernstein coefficients (c_ijk C(n0, i) C(n1, j) C(n2, k)): in this basis a
 // product of polynomials is a plain convolution of coefficient tensors.
@@ -84,7 +80,7 @@ Scaled scaled_component(const BSplineVolume& cell, int component, int direction)
         if (direction == 1) v = factor * (at(i, j + 1, k) - v);
         if (direction == 2) v = factor * (at(i, j, k + 1) - v);
         s.c[static_cast<std::size_t>(i + m[0] * (j + m[1] * k))] =
-            v * binomial(m[0] - 1, i) * binomial(m[1] - 1, j) * binomial(m[2] - 1, k);
+            v * binomial_coefficient(m[0] - 1, i) * binomial_coefficient(m[1] - 1, j) * binomial_coefficient(m[2] - 1, k);
       }
     }
   }
@@ -130,7 +126,7 @@ BernsteinTensor unscale(const Scaled& s) {
     for (int j = 0; j < s.n[1]; ++j) {
       for (int i = 0; i < s.n[0]; ++i) {
         t.at(i, j, k) = s.c[static_cast<std::size_t>(i + s.n[0] * (j + s.n[1] * k))] /
-                        (binomial(s.n[0] - 1, i) * binomial(s.n[1] - 1, j) * binomial(s.n[2] - 1, k));
+                        (binomial_coefficient(s.n[0] - 1, i) * binomial_coefficient(s.n[1] - 1, j) * binomial_coefficient(s.n[2] - 1, k));
       }
     }
   }

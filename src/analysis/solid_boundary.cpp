@@ -301,13 +301,11 @@ void finish_surface(const BSplineVolume& volume, MarchingTetrahedra& mt, const B
   auto t = Clock::now();
   const auto& verts = mt.vertices();
   if (options.snap) {
-    for (std::size_t i = 0; i < verts.size(); ++i) {
-      // The reach: the length of the tetrahedron edge the vertex came from is not kept, so the
-      // vertex may move at most a small share of the domain.
-      double reach = 0;
-      for (int d = 0; d < 3; ++d) reach = std::max(reach, volume.domain_max(d) - volume.domain_min(d));
-      mt.set_vertex(static_cast<int>(i), snap_to_zero(volume, verts[i], 0.05 * reach));
-    }
+    // A vertex may move at most 5% of the largest domain extent: Newton steps that go further
+    // have left the basin of the zero set the vertex came from.
+    double extent = 0;
+    for (int d = 0; d < 3; ++d) extent = std::max(extent, volume.domain_max(d) - volume.domain_min(d));
+    for (std::size_t i = 0; i < verts.size(); ++i) mt.set_vertex(static_cast<int>(i), snap_to_zero(volume, verts[i], 0.05 * extent));
   }
   out.stats.seconds_snap = options.snap ? since(t) : 0;
   t = Clock::now();

@@ -11,6 +11,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
+#include "volspline/core/bernstein_tensor.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/spline/affine_map.h"
@@ -25,12 +26,6 @@ using Eigen::Matrix3d;
 using Eigen::MatrixXd;
 using Eigen::Vector3d;
 
-double binomial(int n, int k) {
-  if (k < 0 || k > n) return 0.0;
-  double r = 1.0;
-  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
-  return r;
-}
 
 // A piecewise polynomial on common breakpoints, each piece in Bernstein form on its own span:
 // pieces[s] is (degree + 1) x components, row k the coefficient of B_k^degree.
@@ -46,7 +41,7 @@ MatrixXd elevate(const MatrixXd& b, int q) {
   MatrixXd e = MatrixXd::Zero(q + 1, b.cols());
   for (int k = 0; k <= q; ++k)
     for (int i = std::max(0, k - (q - p)); i <= std::min(p, k); ++i)
-      e.row(k) += binomial(p, i) * binomial(q - p, k - i) / binomial(q, k) * b.row(i);
+      e.row(k) += binomial_coefficient(p, i) * binomial_coefficient(q - p, k - i) / binomial_coefficient(q, k) * b.row(i);
   return e;
 }
 
@@ -66,7 +61,7 @@ Piecewise multiply(const Piecewise& scalar, const Piecewise& f) {
     const MatrixXd& b = f.pieces[s];
     MatrixXd c = MatrixXd::Zero(m + n + 1, b.cols());
     for (int i = 0; i <= m; ++i)
-      for (int j = 0; j <= n; ++j) c.row(i + j) += binomial(m, i) * binomial(n, j) / binomial(m + n, i + j) * a(i, 0) * b.row(j);
+      for (int j = 0; j <= n; ++j) c.row(i + j) += binomial_coefficient(m, i) * binomial_coefficient(n, j) / binomial_coefficient(m + n, i + j) * a(i, 0) * b.row(j);
     r.pieces.push_back(std::move(c));
   }
   return r;

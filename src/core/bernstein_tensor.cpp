@@ -40,13 +40,15 @@ void check_direction(int direction) {
   if (direction < 0 || direction > 2) throw InvalidInput("direction must be 0, 1 or 2, got " + std::to_string(direction));
 }
 
-double binomial(int n, int k) {
-  double b = 1;
-  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;  // exact for the degrees used here
-  return b;
-}
 
 }  // namespace
+
+double binomial_coefficient(int n, int k) {
+  if (k < 0 || k > n) return 0.0;
+  double b = 1.0;
+  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
+  return b;
+}
 
 BernsteinTensor::BernsteinTensor(std::array<int, 3> d) : degrees(d) {
   for (int x : d) {
@@ -137,7 +139,7 @@ BernsteinTensor bernstein_product(const BernsteinTensor& f, const BernsteinTenso
   const std::array<int, 3> d{f.degrees[0] + g.degrees[0], f.degrees[1] + g.degrees[1], f.degrees[2] + g.degrees[2]};
   BernsteinTensor h(d);
   auto scale = [](const std::array<int, 3>& deg, int i, int j, int k) {
-    return binomial(deg[0], i) * binomial(deg[1], j) * binomial(deg[2], k);
+    return binomial_coefficient(deg[0], i) * binomial_coefficient(deg[1], j) * binomial_coefficient(deg[2], k);
   };
   for (int k = 0; k < f.size(2); ++k)
     for (int j = 0; j < f.size(1); ++j)

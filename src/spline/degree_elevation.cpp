@@ -4,6 +4,7 @@
 #include <string>
 
 #include "directional.h"
+#include "volspline/core/bernstein_tensor.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/knot_insertion.h"
 
@@ -11,12 +12,6 @@ namespace volspline {
 
 namespace {
 
-double binomial(int n, int k) {
-  if (k < 0 || k > n) return 0.0;
-  double b = 1.0;
-  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
-  return b;
-}
 
 // Piegl & Tiller, The NURBS Book, A5.9 (DegreeElevateCurve), on lines whose points are blocks
 // of B numbers: each Bézier segment is extracted by knot insertion, elevated with the Bézier
@@ -28,8 +23,8 @@ void elevate_line(const std::vector<double>& U, int p, int t, const double* Pw, 
   auto BA = [&](int i, int j) -> double& { return bezalfs[static_cast<std::size_t>(i * (p + 1) + j)]; };
   BA(0, 0) = BA(ph, p) = 1.0;
   for (int i = 1; i <= ph2; ++i) {
-    const double inv = 1.0 / binomial(ph, i);
-    for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) BA(i, j) = inv * binomial(p, j) * binomial(t, i - j);
+    const double inv = 1.0 / binomial_coefficient(ph, i);
+    for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) BA(i, j) = inv * binomial_coefficient(p, j) * binomial_coefficient(t, i - j);
   }
   for (int i = ph2 + 1; i <= ph - 1; ++i)
     for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) BA(i, j) = BA(ph - i, p - j);

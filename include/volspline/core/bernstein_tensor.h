@@ -9,6 +9,10 @@
 
 namespace volspline {
 
+/// The binomial coefficient C(n, k) as a double (0 outside 0 <= k <= n); exact while it stays
+/// below 2^53, which covers every degree volspline accepts.
+double binomial_coefficient(int n, int k);
+
 struct BernsteinTensor {
   /// Degree in each direction (>= 0).
   std::array<int, 3> degrees{0, 0, 0};
