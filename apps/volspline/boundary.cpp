@@ -28,6 +28,7 @@ void add_boundary_command(CLI::App& app) {
   auto stop = std::make_shared<std::string>("flatness");
   auto resolution = std::make_shared<int>(64);
   auto face_resolution = std::make_shared<int>(24);
+  auto min_level = std::make_shared<int>(3);
   auto snap = std::make_shared<bool>(false);
   auto stats_path = std::make_shared<std::string>();
   auto png = std::make_shared<std::string>();
@@ -40,6 +41,7 @@ void add_boundary_command(CLI::App& app) {
   cmd->add_option("--method", *method, "adaptive (default) or uniform (marching tetrahedra on a resolution^3 grid, the baseline)");
   cmd->add_option("--stop", *stop, "flatness (J within TOL of affine on a cell, default) or width (the paper's: bound of J narrower than TOL)");
   cmd->add_option("--resolution", *resolution, "uniform method: grid cells per direction (default 64)")->check(CLI::Range(1, 1024));
+  cmd->add_option("--min-level", *min_level, "adaptive: split cells the surface may cross to at least 2^-L of their Bézier piece (default 3)")->check(CLI::Range(0, 20));
   cmd->add_option("--face-resolution", *face_resolution, "segments per direction of the face patches (default 24)")->check(CLI::Range(1, 1024));
   cmd->add_flag("--snap", *snap, "move implicit vertices onto J = 0 by Newton steps in the domain");
   cmd->add_option("--stats", *stats_path, "write statistics as JSON");
@@ -66,6 +68,7 @@ void add_boundary_command(CLI::App& app) {
     options.max_cells = *max_cells;
     options.resolution = *resolution;
     options.face_resolution = *face_resolution;
+    options.min_level = *min_level;
     options.snap = *snap;
     const Model model = read_model(*in);
     TriangleMesh mesh;

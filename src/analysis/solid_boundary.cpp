@@ -56,6 +56,7 @@ void check_options(const BoundaryOptions& o) {
     throw InvalidInput("tolerance must be a finite number > 0, got " + format_double(o.tolerance));
   }
   if (o.max_cells < 1) throw InvalidInput("the cell budget must be at least 1");
+  if (o.min_level < 0 || o.min_level > 20) throw InvalidInput("min_level must be in 0..20, got " + std::to_string(o.min_level));
   if (o.resolution < 1 || o.resolution > 1024) throw InvalidInput("resolution must be in 1..1024, got " + std::to_string(o.resolution));
   if (o.face_resolution < 1 || o.face_resolution > 4096) {
     throw InvalidInput("face resolution must be in 1..4096, got " + std::to_string(o.face_resolution));
@@ -360,7 +361,14 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
     int direction = sub.split_direction(cell, by_width);
     // Cells keep an even lattice extent so that centres of cells and faces are lattice points.
     if (direction >= 0 && cell.level[static_cast<std::size_t>(direction)] >= JacobianSubdivision::kMaxLevel - 1) direction = -1;
-    const bool done = by_width ? cell.width() <= stop : sub.nonlinearity(cell) <= 0.5 * stop;
+    bool done = by_width ? cell.width() <= stop : sub.nonlinearity(cell) <= 0.5 * stop;
+    for (int d = 0; d < 3; ++d) {
+      if (cell.level[static_cast<std::size_t>(d)] < options.min_level &&
+          (direction < 0 || cell.level[static_cast<std::size_t>(d)] < cell.level[static_cast<std::size_t>(direction)] || done)) {
+        direction = d;
+        done = false;
+      }
+    }
     if (done || direction < 0 || out.stats.cells_examined + 2 > options.max_cells) {
       leaves.push_back(leaf_of(cell, true));
       continue;

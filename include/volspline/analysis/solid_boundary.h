@@ -35,6 +35,10 @@ struct BoundaryOptions {
   /// Adaptive: budget of cells examined (bounded); the cells still queued when it runs out are
   /// kept as they are.
   std::int64_t max_cells = 200000;
+  /// Adaptive: a cell the zero set may cross is split until it is at most 2^-min_level of its
+  /// Bézier piece in every direction, whatever its bound, so that the surface is sampled finely
+  /// enough to follow the geometry of the map even where J is nearly affine.
+  int min_level = 3;
   /// Uniform: samples per direction are resolution + 1 (resolution^3 cubes, 6 tetrahedra each).
   int resolution = 64;
   /// Move every implicit vertex onto J = 0 by Newton steps in the domain before mapping it.
