@@ -24,6 +24,7 @@ void add_lattice_command(CLI::App& app);
 void add_jacobian_command(CLI::App& app);
 void add_boundary_command(CLI::App& app);
 void add_blend_command(CLI::App& app);
+void add_view_command(CLI::App& app);
 
 /// Writes the boundary-determination examples of `demo` into `dir`.
 void write_boundary_demo(const std::filesystem::path& dir);

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   volspline::cli::add_jacobian_command(app);
   volspline::cli::add_boundary_command(app);
   volspline::cli::add_blend_command(app);
+  volspline::cli::add_view_command(app);
   volspline::cli::add_demo_command(app);
   try {
     app.parse(argc, argv);

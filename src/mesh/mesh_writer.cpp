@@ -84,8 +84,19 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
                      "': expected the extension .ply, .obj, .stl or .glb");
 }
 
-std::string ply_bytes(const TriangleMesh& mesh, bool ascii) {
+std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<double>& scalars,
+                      const std::string& scalar_name) {
   validate_mesh(mesh);
+  const bool with_scalar = !scalars.empty();
+  if (with_scalar) {
+    if (scalars.size() != mesh.num_vertices())
+      throw InvalidInput("a PLY scalar needs one value per vertex: " + std::to_string(mesh.num_vertices()) + " vertices, " +
+                         std::to_string(scalars.size()) + " values");
+    const bool plain = !scalar_name.empty() && std::all_of(scalar_name.begin(), scalar_name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+    });
+    if (!plain) throw InvalidInput("a PLY property name must be letters, digits, '_', '-' or '.', got '" + scalar_name + "'");
+  }
   std::string out;
   out += "ply\n";
   out += ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n";
@@ -97,6 +108,7 @@ std::string ply_bytes(const TriangleMesh& mesh, bool ascii) {
     out += name;
     out += '\n';
   }
+  if (with_scalar) out += "property double " + scalar_name + "\n";
   out += "element face " + std::to_string(mesh.num_triangles()) + "\n";
   out += "property list uchar int vertex_indices\n";
   out += "property int part\n";
@@ -107,6 +119,10 @@ std::string ply_bytes(const TriangleMesh& mesh, bool ascii) {
       append_numbers(out, mesh.positions[v]);
       out += ' ';
       append_numbers(out, mesh.parameters[v]);
+      if (with_scalar) {
+        out += ' ';
+        append_number(out, scalars[v]);
+      }
       out += '\n';
     }
     for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
@@ -126,6 +142,7 @@ std::string ply_bytes(const TriangleMesh& mesh, bool ascii) {
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     for (int i = 0; i < 3; ++i) append_little_endian(out, mesh.positions[v][i]);
     for (int i = 0; i < 3; ++i) append_little_endian(out, mesh.parameters[v][i]);
+    if (with_scalar) append_little_endian(out, scalars[v]);
   }
   for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
     append_little_endian(out, std::uint8_t{3});
@@ -245,8 +262,16 @@ int add_accessor(tinygltf::Model& model, int view, int component, std::size_t co
 
 }  // namespace
 
-std::string glb_bytes(const TriangleMesh& mesh) {
+std::string glb_bytes(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& vertex_colors) {
   validate_mesh(mesh);
+  if (!vertex_colors.empty()) {
+    if (vertex_colors.size() != mesh.num_vertices())
+      throw InvalidInput("glTF vertex colours: " + std::to_string(mesh.num_vertices()) + " vertices, " +
+                         std::to_string(vertex_colors.size()) + " colours");
+    for (std::size_t v = 0; v < vertex_colors.size(); ++v)
+      if (!vertex_colors[v].allFinite() || vertex_colors[v].minCoeff() < 0 || vertex_colors[v].maxCoeff() > 1)
+        throw InvalidInput("glTF vertex colour " + std::to_string(v) + " has a component outside [0, 1]");
+  }
   if (mesh.num_triangles() * 3 > std::numeric_limits<std::uint32_t>::max()) {
     throw InvalidInput("glTF indices are 32-bit: the mesh has too many triangles (" + std::to_string(mesh.num_triangles()) + ")");
   }
@@ -288,8 +313,9 @@ std::string glb_bytes(const TriangleMesh& mesh) {
     for (int i = 0; i < 3; ++i) append_raw(bytes, static_cast<float>(unit[i]));
   }
   const std::size_t colors_at = bytes.size();
-  for (const int part : part_of) {
-    const Eigen::Vector3d srgb = part_color(part);
+  for (std::size_t k = 0; k < part_of.size(); ++k) {
+    const Eigen::Vector3d srgb =
+        vertex_colors.empty() ? part_color(part_of[k]) : vertex_colors[static_cast<std::size_t>(source[k])];
     for (int i = 0; i < 3; ++i) append_raw(bytes, static_cast<float>(linear_from_srgb(srgb[i])));
   }
   const std::size_t indices_at = bytes.size();
@@ -354,13 +380,13 @@ std::string mesh_bytes(const TriangleMesh& mesh, MeshFormat format,
                        const MeshWriteOptions& options) {
   switch (format) {
     case MeshFormat::Ply:
-      return ply_bytes(mesh, options.ascii);
+      return ply_bytes(mesh, options.ascii, options.vertex_scalars, options.scalar_name);
     case MeshFormat::Obj:
       return obj_bytes(mesh);
     case MeshFormat::Stl:
       return stl_bytes(mesh, options.ascii);
     case MeshFormat::Glb:
-      return glb_bytes(mesh);
+      return glb_bytes(mesh, options.vertex_colors);
   }
   throw InvalidInput("unknown mesh format");
 }

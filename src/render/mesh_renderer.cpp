@@ -8,6 +8,7 @@
 #include <mutex>
 #include <numbers>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -17,6 +18,7 @@
 
 #include "volspline/core/error.h"
 #include "volspline/mesh/mesh_checks.h"
+#include "volspline/render/color_bar.h"
 
 namespace volspline {
 
@@ -184,6 +186,13 @@ void validate_options(const RenderOptions& o) {
       o.single_color.maxCoeff() > 1) {
     fail("single colour components must be in [0, 1]");
   }
+  if (o.color == ColorMode::Scalar) {
+    for (std::size_t i = 0; i < o.vertex_scalars.size(); ++i)
+      if (!std::isfinite(o.vertex_scalars[i])) fail("vertex scalar " + std::to_string(i) + " is not finite");
+    if (std::isinf(o.scalar_min) || std::isinf(o.scalar_max) ||
+        (!std::isnan(o.scalar_min) && !std::isnan(o.scalar_max) && !(o.scalar_min < o.scalar_max)))
+      fail("the scalar range must be finite with min < max");
+  }
 }
 
 // ----- camera -------------------------------------------------------------------------------
@@ -265,13 +274,16 @@ struct TriangleShading {
   std::array<Vec3f, 3> corner_normals;  // unit normals to interpolate across the triangle
   Vec3f heights;                        // distance of each corner from the opposite edge
   Vec3f color;                          // linear RGB
+  Vec3f corner_t;                       // ColorMode::Scalar: corner values mapped to [0, 1]
+  std::uint8_t outline = 0;             // bit i: the edge opposite corner i is a mesh border
 };
 
 // A vertex shared by more triangles than this is a pole or a fan; smoothing there would cost
 // the square of its valence, and flat shading looks as good.
 constexpr std::size_t kMaxSmoothedValence = 64;
 
-std::vector<TriangleShading> shading_data(const TriangleMesh& mesh, const RenderOptions& o) {
+std::vector<TriangleShading> shading_data(const TriangleMesh& mesh, const RenderOptions& o,
+                                         const std::pair<double, double>& range) {
   const std::size_t n = mesh.num_triangles();
   std::vector<Eigen::Vector3d> face(n);  // cross products: normals weighted by twice the area
   std::vector<Eigen::Vector3d> unit(n);
@@ -298,6 +310,17 @@ std::vector<TriangleShading> shading_data(const TriangleMesh& mesh, const Render
     }
   }
 
+  // Border edges (used by one triangle) of open surfaces — slices, isoparametric surfaces,
+  // the Jacobian-zero sheet — are outlined, so that overlapping flat pieces stay apart.
+  std::unordered_map<std::uint64_t, int> edge_uses;
+  const auto edge_key = [](int a, int b) {
+    return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+  };
+  if (o.outline_borders) {
+    edge_uses.reserve(3 * n);
+    for (const auto& tri : mesh.triangles)
+      for (int i = 0; i < 3; ++i) ++edge_uses[edge_key(tri[(i + 1) % 3], tri[(i + 2) % 3])];
+  }
   const double cos_crease = std::cos(o.crease_angle_deg * std::numbers::pi / 180);
   const Vec3f single = srgb_to_linear(o.single_color);
   std::vector<TriangleShading> data(n);
@@ -325,6 +348,16 @@ std::vector<TriangleShading> shading_data(const TriangleMesh& mesh, const Render
       s.heights[i] = edge > 0 ? static_cast<float>(twice_area / edge) : 0.0f;
     }
     s.color = o.color == ColorMode::ByPart ? srgb_to_linear(part_color(mesh.parts[t])) : single;
+    if (o.outline_borders) {
+      for (int i = 0; i < 3; ++i)
+        if (edge_uses[edge_key(tri[(i + 1) % 3], tri[(i + 2) % 3])] == 1) s.outline |= std::uint8_t(1u << i);
+    }
+    if (o.color == ColorMode::Scalar) {
+      for (int i = 0; i < 3; ++i) {
+        const double value = o.vertex_scalars[static_cast<std::size_t>(tri[i])];
+        s.corner_t[i] = static_cast<float>((value - range.first) / (range.second - range.first));
+      }
+    }
   }
   return data;
 }
@@ -339,6 +372,8 @@ class Shader {
   Shader(const Camera& camera, std::vector<TriangleShading> triangles, const RenderOptions& o)
       : triangles_(std::move(triangles)),
         edges_(o.edges),
+        scalar_(o.color == ColorMode::Scalar),
+        colormap_(o.colormap),
         pixel_size_(static_cast<float>(camera.pixel_size(o.height))) {
     // Lights hang relative to the camera so every view direction is lit the same way: a key
     // light above-left in front, a weaker fill from the right, and a rim light from behind that
@@ -374,8 +409,21 @@ class Shader {
     }
     const Vec3f half = (lights_[0].direction + to_eye).normalized();
     const float specular = 0.22f * std::pow(std::max(0.0f, normal.dot(half)), 48.0f);
-    Vec3f color = diffuse * s.color + Vec3f::Constant(specular);
+    const Vec3f base =
+        scalar_ ? srgb_to_linear(colormap_color(colormap_, w * s.corner_t[0] + u * s.corner_t[1] + v * s.corner_t[2]))
+                : s.color;
+    Vec3f color = diffuse * base + Vec3f::Constant(specular);
 
+    if (s.outline) {
+      // A border line about two pixels wide, drawn wholly by the one triangle at the border.
+      const float pixel = distance * pixel_size_;
+      const float bary[3] = {w, u, v};
+      float to_border = std::numeric_limits<float>::infinity();
+      for (int i = 0; i < 3; ++i)
+        if (s.outline & (1u << i)) to_border = std::min(to_border, bary[i] * s.heights[i]);
+      const float line = std::clamp((1.6f * pixel - to_border) / (0.6f * pixel), 0.0f, 1.0f);
+      color = (1 - 0.8f * line) * color + 0.8f * line * Vec3f(0.10f, 0.09f, 0.08f);
+    }
     if (edges_) {
       const float to_edge = std::min({w * s.heights[0], u * s.heights[1], v * s.heights[2]});
       const float pixel = distance * pixel_size_;
@@ -390,6 +438,8 @@ class Shader {
  private:
   std::vector<TriangleShading> triangles_;
   bool edges_;
+  bool scalar_;
+  Colormap colormap_;
   float pixel_size_;
   std::array<Light, 3> lights_;
 };
@@ -527,14 +577,66 @@ Eigen::Vector3d part_color(int part) {
       return {0.80, 0.70, 0.95};  // w = max: lavender
     case 6:
       return {0.95, 0.33, 0.12};  // det J = 0: orange-red, the thing one looks for
+    case 7:
+      return {0.36, 0.58, 0.90};  // u = const surfaces: the u faces' blue
+    case 8:
+      return {0.45, 0.76, 0.45};  // v = const: green
+    case 9:
+      return {0.68, 0.55, 0.88};  // w = const: purple
+    case 10:
+      return {0.93, 0.76, 0.45};  // planar slices: sand, like a cut through material
     default:
       return {0.70, 0.70, 0.70};
   }
 }
 
+std::pair<double, double> scalar_range(const TriangleMesh& mesh, const RenderOptions& options) {
+  double lo = options.scalar_min, hi = options.scalar_max;
+  if (std::isnan(lo) || std::isnan(hi)) {
+    double data_lo = std::numeric_limits<double>::infinity(), data_hi = -data_lo;
+    for (const auto& t : mesh.triangles)
+      for (const int v : t) {
+        if (static_cast<std::size_t>(v) >= options.vertex_scalars.size()) continue;
+        data_lo = std::min(data_lo, options.vertex_scalars[static_cast<std::size_t>(v)]);
+        data_hi = std::max(data_hi, options.vertex_scalars[static_cast<std::size_t>(v)]);
+      }
+    if (!(data_lo <= data_hi)) data_lo = data_hi = 0;
+    if (std::isnan(lo)) lo = std::isnan(hi) ? data_lo : std::min(data_lo, hi);
+    if (std::isnan(hi)) hi = std::max(data_hi, lo);
+  }
+  if (!(hi > lo)) {
+    // A constant field: centre it so it shows the middle colour and the bar still reads.
+    const double pad = std::max(1e-12, 1e-6 * std::abs(lo));
+    lo -= pad;
+    hi += pad;
+  }
+  return {lo, hi};
+}
+
 Image render_mesh(const TriangleMesh& mesh, const RenderOptions& options) {
   validate_options(options);
   validate_mesh(mesh);
+  if (options.color == ColorMode::Scalar && options.vertex_scalars.size() != mesh.num_vertices()) {
+    throw InvalidInput("scalar colouring needs one value per vertex: the mesh has " + std::to_string(mesh.num_vertices()) +
+                       " vertices, got " + std::to_string(options.vertex_scalars.size()) + " values");
+  }
+  if (options.color == ColorMode::Scalar && !options.color_bar_title.empty()) {
+    // Frame the mesh in the picture left of the bar, then add the bar on the same backdrop.
+    const std::pair<double, double> range = scalar_range(mesh, options);
+    const int bar = color_bar_width(options.width, options.height);
+    RenderOptions left = options;
+    left.width = options.width - bar;
+    left.color_bar_title.clear();
+    left.scalar_min = range.first;
+    left.scalar_max = range.second;
+    const Image inner = render_mesh(mesh, left);
+    Image image = background_image(options);
+    for (int y = 0; y < inner.height; ++y)
+      std::copy(inner.rgba.begin() + 4 * std::ptrdiff_t(y) * inner.width, inner.rgba.begin() + 4 * std::ptrdiff_t(y + 1) * inner.width,
+                image.rgba.begin() + 4 * std::ptrdiff_t(y) * image.width);
+    draw_color_bar(image, {options.colormap, range.first, range.second, options.color_bar_title});
+    return image;
+  }
 
   // Only vertices of triangles are seen, so only they decide the framing.
   std::vector<char> used(mesh.num_vertices(), 0);
@@ -555,7 +657,7 @@ Image render_mesh(const TriangleMesh& mesh, const RenderOptions& options) {
     if (used[v]) points.push_back(mesh.positions[v] - centre);
   }
   const Camera camera = fit_camera(points, extent, options);
-  const Shader shader(camera, shading_data(mesh, options), options);
+  const Shader shader(camera, shading_data(mesh, options, scalar_range(mesh, options)), options);
   EmbreeScene scene(mesh, centre);
   const RowRenderer rows(scene, camera, shader, options);
 

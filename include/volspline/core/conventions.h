@@ -16,7 +16,9 @@
 //   (d, 0) (Lasser 1994, the paragraph after eq. 5).
 // * The six boundary faces of a volume are numbered as mesh parts 0..5:
 //   u = min, u = max, v = min, v = max, w = min, w = max. Part 6 is the implicit surface where the
-//   Jacobian determinant vanishes (Joy-Duchaineau 1999, Theorem 4.1).
+//   Jacobian determinant vanishes (Joy-Duchaineau 1999, Theorem 4.1). Looking inside a solid
+//   (Lasser 1994 §IV) adds parts 7..9 for isoparametric surfaces u, v, w = const and 10 for
+//   planar slices.
 namespace volspline {
 
 /// Mesh part numbers of the boundary of a trivariate solid.
@@ -28,6 +30,10 @@ enum class Part : int {
   WMin = 4,
   WMax = 5,
   JacobianZero = 6,
+  IsoU = 7,
+  IsoV = 8,
+  IsoW = 9,
+  Slice = 10,
 };
 
 }  // namespace volspline

@@ -6,6 +6,9 @@
 // (atomically, see io/atomic_file.h).
 #include <filesystem>
 #include <string>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "volspline/mesh/triangle_mesh.h"
 
@@ -20,11 +23,22 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path);
 struct MeshWriteOptions {
   /// Text instead of binary, for PLY and STL; OBJ is always text.
   bool ascii = false;
+  /// PLY: one value per vertex, written as one more vertex property (double) named
+  /// `scalar_name` — the field a picture was coloured by. Ignored by the other formats.
+  std::vector<double> vertex_scalars{};
+  std::string scalar_name = "scalar";
+  /// glTF: one sRGB colour (components in [0, 1]) per vertex for COLOR_0 instead of the part
+  /// colours, so a file coloured by a field looks like its picture.
+  std::vector<Eigen::Vector3d> vertex_colors{};
 };
 
 /// PLY 1.0, binary_little_endian unless `ascii`: vertices with double x, y, z, u, v, w (position
 /// and parameters) and faces with `list uchar int vertex_indices` and `int part`.
-std::string ply_bytes(const TriangleMesh& mesh, bool ascii = false);
+/// With `scalars` (one per vertex) a further vertex property `double scalar_name` follows w.
+/// \throw InvalidInput if the mesh is malformed, the scalars are not one per vertex or the name
+/// is not a plain identifier.
+std::string ply_bytes(const TriangleMesh& mesh, bool ascii = false, const std::vector<double>& scalars = {},
+                      const std::string& scalar_name = "scalar");
 
 /// Wavefront OBJ: `v` lines and 1-based `f` lines grouped as `g part_N`, parts ascending.
 /// Parameters are not written.
@@ -39,9 +53,11 @@ std::string stl_bytes(const TriangleMesh& mesh, bool ascii = false);
 /// (part_color of render/mesh_renderer.h, converted from sRGB to glTF's linear colour space), so
 /// a vertex shared by two parts is written once per part; normals are area-weighted averages
 /// over the triangles of the same part around a vertex, so the seams between parts stay sharp.
-/// Parameters are not written.
-/// \throw InvalidInput if the mesh is malformed, Error if tinygltf fails.
-std::string glb_bytes(const TriangleMesh& mesh);
+/// Parameters are not written. With `vertex_colors` (sRGB, one per vertex) the corners carry
+/// those colours instead of the parts'.
+/// \throw InvalidInput if the mesh is malformed or the colours are not one per vertex in [0, 1],
+/// Error if tinygltf fails.
+std::string glb_bytes(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& vertex_colors = {});
 
 /// The bytes of `mesh` in `format`.
 std::string mesh_bytes(const TriangleMesh& mesh, MeshFormat format,

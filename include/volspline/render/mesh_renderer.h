@@ -2,9 +2,14 @@
 // A headless picture of a boundary mesh, for looking at results without a viewer: ray cast
 // (Embree), shaded with a key, a fill and a rim light, coloured by boundary part so the six
 // faces of a solid and its Jacobian-zero surface can be told apart at a glance.
+#include <limits>
+#include <string>
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "volspline/mesh/triangle_mesh.h"
+#include "volspline/render/colormap.h"
 #include "volspline/render/image.h"
 
 namespace volspline {
@@ -14,6 +19,10 @@ enum class ColorMode {
   ByPart,
   /// Everything in RenderOptions::single_color.
   Single,
+  /// RenderOptions::vertex_scalars through RenderOptions::colormap, interpolated across each
+  /// triangle and mapped per pixel, so the colours are those of the field, not of a mesh of
+  /// colours.
+  Scalar,
 };
 
 struct RenderOptions {
@@ -21,6 +30,9 @@ struct RenderOptions {
   int height = 600;
   /// Dark lines along the triangle edges, about a pixel wide.
   bool edges = false;
+  /// Dark lines along the borders of open surfaces (edges used by one triangle), so slices and
+  /// isoparametric surfaces seen edge-on or stacked stay distinct. Closed meshes have none.
+  bool outline_borders = true;
   /// Background pixels get alpha 0 instead of the light gradient.
   bool transparent_background = false;
   ColorMode color = ColorMode::ByPart;
@@ -42,11 +54,28 @@ struct RenderOptions {
   /// whose normals are within this angle of its own, so creases (the edges of a cube, the seams
   /// between a solid's faces) stay crisp.
   double crease_angle_deg = 40;
+
+  /// ColorMode::Scalar: one value per vertex of the mesh.
+  std::vector<double> vertex_scalars;
+  /// The values at the two ends of the colour map; NaN (the default) takes the range of the
+  /// values at vertices of triangles.
+  double scalar_min = std::numeric_limits<double>::quiet_NaN();
+  double scalar_max = std::numeric_limits<double>::quiet_NaN();
+  Colormap colormap = Colormap::Sequential;
+  /// ColorMode::Scalar: unless empty, a colour bar titled with this is drawn at the right and
+  /// the mesh is framed in the rest of the picture.
+  std::string color_bar_title;
 };
+
+/// The range [min, max] ColorMode::Scalar maps onto the colour map: the options' own where set,
+/// else the extreme values at vertices of triangles; a range of zero width is widened so that
+/// the map stays defined. Exposed so that callers (colours in glTF files) agree with pictures.
+std::pair<double, double> scalar_range(const TriangleMesh& mesh, const RenderOptions& options);
 
 /// The sRGB colour, components in [0, 1], used for a mesh part (core/conventions.h): blue for the
 /// u faces, green for v, purple for w (darker at min, lighter at max), orange-red for the
-/// Jacobian-zero surface, grey for anything else.
+/// Jacobian-zero surface, the matching mid tones for isoparametric surfaces u, v, w = const
+/// (parts 7..9), sand for planar slices (10), grey for anything else.
 Eigen::Vector3d part_color(int part);
 
 /// Renders `mesh` as seen through a perspective camera fitted to it. A mesh with no visible

@@ -1,0 +1,226 @@
+// volspline view MODEL -o IMAGE.png [--iso u:N] [--through U,V,W] [--slices AXIS:N]
+//   [--plane NX,NY,NZ,D] [--core X,Y,Z] [--paddlewheel AXIS:N[@X,Y,Z]] [--faces]
+//   [--color jacobian|u|v|w|ATTRIBUTE] [--range MIN,MAX] [--mesh OUT] [--camera DX,DY,DZ[,UX,UY,UZ]]
+//   [--size W,H]: looking inside a solid (Lasser 1994 §IV).
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <optional>
+
+#include "cli_support.h"
+#include "commands.h"
+#include "volspline/analysis/scalar_fields.h"
+#include "volspline/core/error.h"
+#include "volspline/io/atomic_file.h"
+#include "volspline/io/model_file.h"
+#include "volspline/io/model_formats.h"
+#include "volspline/mesh/mesh_writer.h"
+#include "volspline/mesh/solid_views.h"
+#include "volspline/render/color_bar.h"
+#include "volspline/render/colormap.h"
+#include "volspline/render/image.h"
+#include "volspline/render/mesh_renderer.h"
+
+namespace volspline::cli {
+namespace {
+
+struct ViewArguments {
+  std::string model, image, mesh, color, range, camera, size = "800,600", through, core;
+  std::vector<std::string> iso, slices, planes, paddlewheels;
+  int resolution = 32;
+  bool faces = false, edges = false, transparent = false, ascii = false;
+};
+
+// "NAME:N" with NAME one of `names` (its index is returned) and N >= 1.
+std::pair<int, int> parse_named_count(const std::string& text, const std::string& names, const std::string& option) {
+  const auto colon = text.find(':');
+  const std::string name = text.substr(0, colon);
+  if (colon == std::string::npos || name.size() != 1 || names.find(name[0]) == std::string::npos) {
+    throw InvalidInput("expected " + std::string(1, names[0]) + ":N, " + std::string(1, names[1]) + ":N or " +
+                           std::string(1, names[2]) + ":N, got '" + text + "'",
+                       option);
+  }
+  const int count = parse_integers(text.substr(colon + 1), 1, 1, option)[0];
+  if (count > 1000) throw InvalidInput("expected at most 1000 surfaces, got '" + text + "'", option);
+  return {static_cast<int>(names.find(name[0])), count};
+}
+
+Eigen::Vector3d vector3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+SolidViewRequest request_from(const ViewArguments& a) {
+  SolidViewRequest request;
+  request.resolution = a.resolution;
+  request.faces = a.faces;
+  for (const auto& s : a.iso) {
+    const auto [direction, count] = parse_named_count(s, "uvw", "--iso");
+    request.families.push_back({direction, count});
+  }
+  if (!a.through.empty()) {
+    const auto t = parse_numbers(a.through, 3, "--through");
+    request.through = std::array<double, 3>{t[0], t[1], t[2]};
+  }
+  for (const auto& s : a.slices) {
+    const auto [axis, count] = parse_named_count(s, "xyz", "--slices");
+    request.series.push_back({axis, count});
+  }
+  for (const auto& s : a.planes) {
+    const auto p = parse_numbers(s, 4, "--plane");
+    if (Eigen::Vector3d(p[0], p[1], p[2]).norm() == 0) throw InvalidInput("the plane normal NX,NY,NZ must not be zero, got '" + s + "'", "--plane");
+    request.planes.push_back({Eigen::Vector3d(p[0], p[1], p[2]), p[3]});
+  }
+  if (!a.core.empty()) request.core = vector3(parse_numbers(a.core, 3, "--core"));
+  for (const auto& s : a.paddlewheels) {
+    const auto at = s.find('@');
+    const auto [axis, count] = parse_named_count(s.substr(0, at), "xyz", "--paddlewheel");
+    SolidViewRequest::Paddlewheel wheel{axis, count, std::nullopt};
+    if (at != std::string::npos) wheel.point = vector3(parse_numbers(s.substr(at + 1), 3, "--paddlewheel"));
+    request.paddlewheels.push_back(wheel);
+  }
+  if (request.probes_empty()) request.faces = true;  // nothing inside asked for: show the solid
+  return request;
+}
+
+void run_view(const ViewArguments& a) {
+  if (std::filesystem::path(a.image).extension() != ".png")
+    throw InvalidInput("expected a picture file name ending in .png, got '" + a.image + "'", "--output");
+  const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
+  if (mesh_format == MeshFormat::Stl && !a.color.empty())
+    throw InvalidInput("STL cannot carry the colouring; use .ply or .glb", "--mesh");
+  const auto wh = parse_integers(a.size, 2, 16, "--size");
+  if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + a.size + "'", "--size");
+  RenderOptions options;
+  options.width = wh[0];
+  options.height = wh[1];
+  options.edges = a.edges;
+  options.transparent_background = a.transparent;
+  if (!a.camera.empty()) {
+    const auto count = std::count(a.camera.begin(), a.camera.end(), ',') + 1;
+    const auto c = parse_numbers(a.camera, count == 6 ? 6 : 3, "--camera");
+    options.view_direction = Eigen::Vector3d(c[0], c[1], c[2]);
+    if (count == 6) options.up = Eigen::Vector3d(c[3], c[4], c[5]);
+    if (options.view_direction.norm() == 0) throw InvalidInput("the view direction must not be zero", "--camera");
+  }
+  double range_min = std::numeric_limits<double>::quiet_NaN(), range_max = range_min;
+  if (!a.range.empty()) {
+    const auto r = parse_numbers(a.range, 2, "--range");
+    if (!(r[0] < r[1])) throw InvalidInput("expected MIN < MAX, got '" + a.range + "'", "--range");
+    range_min = r[0];
+    range_max = r[1];
+  }
+  const SolidViewRequest request = request_from(a);
+  const std::optional<ScalarField> field = a.color.empty() ? std::nullopt : std::optional(scalar_field_named(a.color));
+
+  const Model model = read_model_file(a.model);
+  std::vector<std::size_t> volumes;
+  for (std::size_t i = 0; i < model.objects.size(); ++i)
+    if (std::holds_alternative<BSplineVolume>(model.objects[i].spline)) volumes.push_back(i);
+  if (volumes.empty()) throw InvalidInput("the model has no volume objects to look inside", a.model);
+
+  // One frame for all patches, so that a series of slices cuts a multipatch model evenly.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const std::size_t i : volumes) {
+    try {
+      const auto box = sampled_bounding_box(std::get<BSplineVolume>(model.objects[i].spline));
+      lo = lo.cwiseMin(box.first);
+      hi = hi.cwiseMax(box.second);
+    } catch (const InvalidInput& e) {
+      throw e.located(a.model + ": objects[" + std::to_string(i) + "]");
+    }
+  }
+  const std::vector<Plane> planes = requested_planes(request, lo, hi);
+
+  TriangleMesh mesh;
+  std::vector<double> scalars;
+  for (const std::size_t i : volumes) {
+    const ModelObject& object = model.objects[i];
+    const auto& volume = std::get<BSplineVolume>(object.spline);
+    try {
+      const TriangleMesh part = solid_view_mesh(volume, request, planes);
+      if (field) {
+        std::vector<double> attribute;
+        if (field->kind == ScalarKind::Attribute) {
+          const auto it = object.attributes.find(field->attribute);
+          if (it == object.attributes.end()) {
+            std::string known;
+            for (const auto& [name, values] : object.attributes) known += (known.empty() ? "" : ", ") + name;
+            throw InvalidInput("--color " + a.color + ": expected jacobian, u, v, w or an attribute of the object (" +
+                               (known.empty() ? std::string("it has none") : "it has " + known) + ")");
+          }
+          attribute = it->second;
+        }
+        const auto values = evaluate_scalar_field(volume, *field, part.parameters, attribute);
+        scalars.insert(scalars.end(), values.begin(), values.end());
+      }
+      mesh.append(part);
+    } catch (const InvalidInput& e) {
+      throw e.located(a.model + ": objects[" + std::to_string(i) + "]");
+    }
+  }
+
+  MeshWriteOptions mesh_options;
+  mesh_options.ascii = a.ascii;
+  if (field) {
+    const ScalarColoring coloring = suggested_coloring(scalars, field->kind == ScalarKind::Jacobian);
+    options.color = ColorMode::Scalar;
+    options.vertex_scalars = scalars;
+    options.colormap = coloring.map;
+    options.scalar_min = std::isnan(range_min) ? coloring.min : range_min;
+    options.scalar_max = std::isnan(range_max) ? coloring.max : range_max;
+    options.color_bar_title = field->name();
+    mesh_options.vertex_scalars = scalars;
+    mesh_options.scalar_name = field->kind == ScalarKind::Attribute ? "attribute" : field->name();
+    const auto [low, high] = scalar_range(mesh, options);
+    for (const double s : scalars) mesh_options.vertex_colors.push_back(colormap_color(options.colormap, (s - low) / (high - low)));
+  }
+  if (mesh.triangles.empty()) std::cerr << "volspline: note: nothing to show: the probes miss the solid\n";
+  const Image image = render_mesh(mesh, options);
+  // Both files are prepared before either is committed, so a failure leaves neither behind.
+  const std::string picture = png_bytes(image);
+  if (!a.mesh.empty()) {
+    AtomicFile mesh_file(a.mesh);
+    mesh_file.stream() << mesh_bytes(mesh, mesh_format, mesh_options);
+    AtomicFile picture_file(a.image);
+    picture_file.stream() << picture;
+    mesh_file.commit();
+    picture_file.commit();
+  } else {
+    write_file_atomically(a.image, picture);
+  }
+  std::cout << "wrote " << a.image << ": " << mesh.num_triangles() << " triangles from " << volumes.size() << " volume(s)";
+  if (!planes.empty()) std::cout << ", " << planes.size() << " plane(s)";
+  if (field) std::cout << "; " << field->name() << " in [" << color_bar_label(options.scalar_min) << ", " << color_bar_label(options.scalar_max) << "]";
+  std::cout << "\n";
+  if (!a.mesh.empty()) std::cout << "wrote " << a.mesh << "\n";
+}
+
+}  // namespace
+
+void add_view_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "view", "Picture the inside of a solid: isoparametric surfaces, slices, core sections, paddlewheels, coloured by a field");
+  auto a = std::make_shared<ViewArguments>();
+  cmd->add_option("MODEL", a->model, "model file (.json, .xml, .itd)")->required();
+  cmd->add_option("-o,--output", a->image, "picture (.png)")->required();
+  cmd->add_option("--iso", a->iso, "a family of N isoparametric surfaces, u:N, v:N or w:N (ends included; repeatable)");
+  cmd->add_option("--through", a->through, "the three isoparametric surfaces through V(U,V,W)");
+  cmd->add_option("--slices", a->slices, "N parallel slices across the solid, x:N, y:N or z:N (repeatable)");
+  cmd->add_option("--plane", a->planes, "a cross section by the plane NX*x + NY*y + NZ*z = D, as NX,NY,NZ,D (repeatable)");
+  cmd->add_option("--core", a->core, "three orthogonal slices through the point X,Y,Z (a core section)");
+  cmd->add_option("--paddlewheel", a->paddlewheels,
+                  "N planes through a common axis along x, y or z: AXIS:N, or AXIS:N@X,Y,Z for an axis through X,Y,Z "
+                  "(default: the centre of the solid's box; repeatable)");
+  cmd->add_flag("--faces", a->faces, "also draw the boundary faces (drawn alone when nothing else is asked for)");
+  cmd->add_option("--color", a->color, "colour by a field: jacobian, u, v, w or the name of an attribute");
+  cmd->add_option("--range", a->range, "MIN,MAX of the colour map (default: the field's range; a Jacobian of both signs is centred on 0)");
+  cmd->add_option("--mesh", a->mesh, "also write the shown surfaces: .ply (with the field as a vertex property), .obj, .glb (field colours)");
+  cmd->add_option("--resolution", a->resolution, "segments per parameter direction, plus every knot (default 32)")->check(CLI::Range(1, 512));
+  cmd->add_option("--camera", a->camera, "view direction DX,DY,DZ, optionally followed by an up vector UX,UY,UZ");
+  cmd->add_option("--size", a->size, "picture size W,H in pixels (default 800,600)");
+  cmd->add_flag("--edges", a->edges, "draw the triangle edges");
+  cmd->add_flag("--transparent", a->transparent, "transparent picture background");
+  cmd->add_flag("--ascii", a->ascii, "write the PLY mesh as text");
+  cmd->callback([a] { run_view(*a); });
+}
+
+}  // namespace volspline::cli
