@@ -116,7 +116,7 @@ EdgeStatistics edge_statistics(const TriangleMesh& mesh) {
   return stats;
 }
 
-void weld_by_position(TriangleMesh& mesh, double tolerance) {
+std::vector<int> coincident_vertices(const TriangleMesh& mesh, double tolerance) {
   if (!std::isfinite(tolerance) || tolerance < 0) {
     throw InvalidInput("weld tolerance must be finite and >= 0, got " + std::to_string(tolerance));
   }
@@ -164,6 +164,11 @@ void weld_by_position(TriangleMesh& mesh, double tolerance) {
     }
     representative[v] = found;
   }
+  return representative;
+}
+
+void weld_by_position(TriangleMesh& mesh, double tolerance) {
+  const std::vector<int> representative = coincident_vertices(mesh, tolerance);
 
   // Kept vertices retain their relative order, so the first vertex of the input stays first.
   std::vector<char> used(mesh.positions.size(), 0);

@@ -40,7 +40,10 @@ constexpr std::array<std::array<double, 3>, 7> kDiverging{{{0.130, 0.250, 0.650}
 ScalarColoring suggested_coloring(const std::vector<double>& values, bool signed_field) {
   if (values.empty()) return {};
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
-  if (signed_field && *lo < 0 && *hi > 0) {
+  // Rounding leaves values like 1e-15 where the field vanishes (a degenerate axis); those do
+  // not make a field of one sign "signed".
+  const double noise = 1e-9 * std::max(std::abs(*lo), std::abs(*hi));
+  if (signed_field && *lo < -noise && *hi > noise) {
     const double m = std::max(-*lo, *hi);
     return {Colormap::Diverging, -m, m};
   }

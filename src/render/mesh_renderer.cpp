@@ -316,10 +316,15 @@ std::vector<TriangleShading> shading_data(const TriangleMesh& mesh, const Render
   const auto edge_key = [](int a, int b) {
     return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
   };
+  // Edges are compared by position, not by vertex index, so the seam of a periodic
+  // parameterisation (a torus's v = 0 and v = 1) is not taken for a border.
+  std::vector<int> same;
   if (o.outline_borders) {
+    const auto [lo, hi] = mesh.bounding_box();
+    same = coincident_vertices(mesh, 1e-9 * (hi - lo).norm());
     edge_uses.reserve(3 * n);
     for (const auto& tri : mesh.triangles)
-      for (int i = 0; i < 3; ++i) ++edge_uses[edge_key(tri[(i + 1) % 3], tri[(i + 2) % 3])];
+      for (int i = 0; i < 3; ++i) ++edge_uses[edge_key(same[tri[(i + 1) % 3]], same[tri[(i + 2) % 3]])];
   }
   const double cos_crease = std::cos(o.crease_angle_deg * std::numbers::pi / 180);
   const Vec3f single = srgb_to_linear(o.single_color);
@@ -350,7 +355,7 @@ std::vector<TriangleShading> shading_data(const TriangleMesh& mesh, const Render
     s.color = o.color == ColorMode::ByPart ? srgb_to_linear(part_color(mesh.parts[t])) : single;
     if (o.outline_borders) {
       for (int i = 0; i < 3; ++i)
-        if (edge_uses[edge_key(tri[(i + 1) % 3], tri[(i + 2) % 3])] == 1) s.outline |= std::uint8_t(1u << i);
+        if (edge_uses[edge_key(same[tri[(i + 1) % 3]], same[tri[(i + 2) % 3]])] == 1) s.outline |= std::uint8_t(1u << i);
     }
     if (o.color == ColorMode::Scalar) {
       for (int i = 0; i < 3; ++i) {

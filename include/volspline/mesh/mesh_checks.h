@@ -5,6 +5,8 @@
 // copies of their shared vertices are merged.
 #include <cstddef>
 
+#include <vector>
+
 #include "volspline/mesh/triangle_mesh.h"
 
 namespace volspline {
@@ -39,6 +41,12 @@ struct EdgeStatistics {
 /// Edge counts of `mesh`. The degenerate edge of a triangle with a repeated index is ignored.
 /// \throw InvalidInput if the mesh is malformed (validate_mesh).
 EdgeStatistics edge_statistics(const TriangleMesh& mesh);
+
+/// For each vertex, the earliest vertex whose position lies within `tolerance` of it among those
+/// kept so far (itself if none): the merge map weld_by_position applies, for callers that must
+/// keep the vertices apart but need to know which coincide (seams of periodic
+/// parameterisations). \throw as weld_by_position.
+std::vector<int> coincident_vertices(const TriangleMesh& mesh, double tolerance);
 
 /// Merges vertices whose positions lie within `tolerance` (Euclidean) of an earlier kept vertex;
 /// the merged vertex keeps the position and parameters of the first one. Triangles that end up

@@ -24,7 +24,7 @@ struct ScalarColoring {
 };
 
 /// The sequential map over [min, max] of `values`; but if `signed_field` (a Jacobian) and the
-/// values take both signs, the diverging map over [−m, m] with m = max |value|, so zero is the
+/// values take both signs (beyond 1e-9 of the largest magnitude), the diverging map over [−m, m] with m = max |value|, so zero is the
 /// middle (white) colour and the sign reads at a glance. Empty values give [0, 1].
 ScalarColoring suggested_coloring(const std::vector<double>& values, bool signed_field);
 
