@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "demo_blend.h"
+#include "demo_view.h"
 #include "volspline/core/error.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/construct/paper_examples.h"
@@ -78,6 +79,7 @@ void add_demo_command(CLI::App& app) {
               << "-lattice.json\n  " << base.string() << ".ply\n  " << base.string() << ".png\n";
     write_boundary_demo(*dir);
     write_blend_demo(*dir);  // Peters-Wittman blends, figures 1a-4c
+    write_view_demo(*dir);   // Lasser §IV: isoparametric surfaces, slices, colouring
   });
 }
 

@@ -10,6 +10,7 @@
 
 #include "cli_support.h"
 #include "commands.h"
+#include "view_command.h"
 #include "volspline/analysis/scalar_fields.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
@@ -24,13 +25,6 @@
 
 namespace volspline::cli {
 namespace {
-
-struct ViewArguments {
-  std::string model, image, mesh, color, range, camera, size = "800,600", through, core;
-  std::vector<std::string> iso, slices, planes, paddlewheels;
-  int resolution = 32;
-  bool faces = false, edges = false, transparent = false, ascii = false;
-};
 
 // "NAME:N" with NAME one of `names` (its index is returned) and N >= 1.
 std::pair<int, int> parse_named_count(const std::string& text, const std::string& names, const std::string& option) {
@@ -52,6 +46,9 @@ SolidViewRequest request_from(const ViewArguments& a) {
   SolidViewRequest request;
   request.resolution = a.resolution;
   request.faces = a.faces;
+  request.cutaway = a.cutaway;
+  if (a.cutaway && a.planes.empty() && a.core.empty())
+    throw InvalidInput("a cutaway needs a cross section (--plane) or a core section (--core) to cut along", "--cutaway");
   for (const auto& s : a.iso) {
     const auto [direction, count] = parse_named_count(s, "uvw", "--iso");
     request.families.push_back({direction, count});
@@ -81,7 +78,9 @@ SolidViewRequest request_from(const ViewArguments& a) {
   return request;
 }
 
-void run_view(const ViewArguments& a) {
+}  // namespace
+
+void run_view(const ViewArguments& a, std::ostream& out) {
   if (std::filesystem::path(a.image).extension() != ".png")
     throw InvalidInput("expected a picture file name ending in .png, got '" + a.image + "'", "--output");
   const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
@@ -187,14 +186,37 @@ void run_view(const ViewArguments& a) {
   } else {
     write_file_atomically(a.image, picture);
   }
-  std::cout << "wrote " << a.image << ": " << mesh.num_triangles() << " triangles from " << volumes.size() << " volume(s)";
-  if (!planes.empty()) std::cout << ", " << planes.size() << " plane(s)";
-  if (field) std::cout << "; " << field->name() << " in [" << color_bar_label(options.scalar_min) << ", " << color_bar_label(options.scalar_max) << "]";
-  std::cout << "\n";
-  if (!a.mesh.empty()) std::cout << "wrote " << a.mesh << "\n";
+  out << "wrote " << a.image << ": " << mesh.num_triangles() << " triangles from " << volumes.size() << " volume(s)";
+  if (!planes.empty()) out << ", " << planes.size() << " plane(s)";
+  if (field) out << "; " << field->name() << " in [" << color_bar_label(options.scalar_min) << ", " << color_bar_label(options.scalar_max) << "]";
+  out << "\n";
+  if (!a.mesh.empty()) out << "wrote " << a.mesh << "\n";
 }
 
-}  // namespace
+std::string view_command_line(const ViewArguments& a) {
+  std::string c = "volspline view " + a.model + " -o " + a.image;
+  const auto option = [&c](const std::string& name, const std::string& value) {
+    if (!value.empty()) c += " " + name + " " + value;
+  };
+  for (const auto& s : a.iso) option("--iso", s);
+  option("--through", a.through);
+  for (const auto& s : a.slices) option("--slices", s);
+  for (const auto& s : a.planes) option("--plane", s);
+  option("--core", a.core);
+  for (const auto& s : a.paddlewheels) option("--paddlewheel", s);
+  if (a.faces) c += " --faces";
+  if (a.cutaway) c += " --cutaway";
+  option("--color", a.color);
+  option("--range", a.range);
+  option("--mesh", a.mesh);
+  if (a.resolution != ViewArguments{}.resolution) option("--resolution", std::to_string(a.resolution));
+  option("--camera", a.camera);
+  if (a.size != ViewArguments{}.size) option("--size", a.size);
+  if (a.edges) c += " --edges";
+  if (a.transparent) c += " --transparent";
+  if (a.ascii) c += " --ascii";
+  return c;
+}
 
 void add_view_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
@@ -211,6 +233,9 @@ void add_view_command(CLI::App& app) {
                   "N planes through a common axis along x, y or z: AXIS:N, or AXIS:N@X,Y,Z for an axis through X,Y,Z "
                   "(default: the centre of the solid's box; repeatable)");
   cmd->add_flag("--faces", a->faces, "also draw the boundary faces (drawn alone when nothing else is asked for)");
+  cmd->add_flag("--cutaway", a->cutaway,
+                "draw the faces with the wedge on the positive side of the --plane and --core planes cut away, "
+                "showing those slices in place");
   cmd->add_option("--color", a->color, "colour by a field: jacobian, u, v, w or the name of an attribute");
   cmd->add_option("--range", a->range, "MIN,MAX of the colour map (default: the field's range; a Jacobian of both signs is centred on 0)");
   cmd->add_option("--mesh", a->mesh, "also write the shown surfaces: .ply (with the field as a vertex property), .obj, .glb (field colours)");
@@ -220,7 +245,7 @@ void add_view_command(CLI::App& app) {
   cmd->add_flag("--edges", a->edges, "draw the triangle edges");
   cmd->add_flag("--transparent", a->transparent, "transparent picture background");
   cmd->add_flag("--ascii", a->ascii, "write the PLY mesh as text");
-  cmd->callback([a] { run_view(*a); });
+  cmd->callback([a] { run_view(*a, std::cout); });
 }
 
 }  // namespace volspline::cli

@@ -149,13 +149,6 @@ void slice_one(const BSplineVolume& volume, const SampledVolume& grid, const Pla
 
 }  // namespace
 
-Plane plane_through(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
-  if (!point.allFinite() || !normal.allFinite() || normal.norm() == 0)
-    throw InvalidInput("a plane needs a finite point and a finite nonzero normal");
-  const Eigen::Vector3d unit = normal.normalized();
-  return {unit, unit.dot(point)};
-}
-
 TriangleMesh planar_slices(const BSplineVolume& volume, const std::vector<Plane>& planes, const SliceOptions& options) {
   check_volume(volume);
   if (options.resolution < 1) throw InvalidInput("the slice resolution must be at least 1");

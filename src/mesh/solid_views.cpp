@@ -1,10 +1,12 @@
 #include "volspline/mesh/solid_views.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "volspline/core/error.h"
 #include "volspline/mesh/face_tessellation.h"
 #include "volspline/mesh/isoparametric_surfaces.h"
+#include "volspline/mesh/mesh_clipping.h"
 
 namespace volspline {
 
@@ -36,13 +38,42 @@ std::vector<Plane> requested_planes(const SolidViewRequest& request, const Eigen
   return planes;
 }
 
+std::vector<Plane> cut_planes(const SolidViewRequest& request) {
+  std::vector<Plane> cuts;
+  if (!request.cutaway) return cuts;
+  for (const Plane& p : request.planes) cuts.push_back({p.normal.normalized(), p.offset / p.normal.norm()});
+  if (request.core) {
+    const auto core = core_planes(*request.core);
+    cuts.insert(cuts.end(), core.begin(), core.end());
+  }
+  return cuts;
+}
+
 TriangleMesh solid_view_mesh(const BSplineVolume& volume, const SolidViewRequest& request, const std::vector<Plane>& planes) {
   TriangleMesh mesh;
-  if (request.faces) mesh.append(tessellate_faces(volume, {.resolution = request.resolution}));
+  const std::vector<Plane> cuts = cut_planes(request);
+  const auto is_cut = [&cuts](const Plane& p) {
+    return std::any_of(cuts.begin(), cuts.end(), [&p](const Plane& c) { return c.normal == p.normal && c.offset == p.offset; });
+  };
+  if (request.faces || request.cutaway) {
+    const TriangleMesh faces = tessellate_faces(volume, {.resolution = request.resolution});
+    mesh.append(cuts.empty() ? faces : remove_convex_region(faces, cuts));
+  }
   const IsoparametricOptions iso{.resolution = request.resolution};
   for (const auto& f : request.families) mesh.append(isoparametric_family(volume, f.direction, f.count, iso));
   if (request.through) mesh.append(isoparametric_surfaces_through(volume, *request.through, iso));
-  if (!planes.empty()) mesh.append(planar_slices(volume, planes, {.resolution = request.resolution}));
+  std::vector<Plane> whole;
+  for (const Plane& p : planes)
+    if (!is_cut(p)) whole.push_back(p);
+  if (!whole.empty()) mesh.append(planar_slices(volume, whole, {.resolution = request.resolution}));
+  // Each wall of the wedge is its slice where the point is on the positive side of the others.
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    std::vector<Plane> others;
+    for (std::size_t j = 0; j < cuts.size(); ++j)
+      if (j != i) others.push_back(cuts[j]);
+    const TriangleMesh slice = planar_slice(volume, cuts[i], {.resolution = request.resolution});
+    mesh.append(others.empty() ? slice : keep_convex_region(slice, others));
+  }
   return mesh;
 }
 

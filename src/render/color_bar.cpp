@@ -8,10 +8,14 @@
 
 namespace volspline {
 
-int color_bar_width(int width, int height) {
-  const int scale = std::max(1, std::min(width, height) / 300);
-  return std::min(width / 3, 70 * scale);
-}
+namespace {
+
+// Font pixels per font unit: labels stay legible from small pictures to large ones.
+int text_scale(int width, int height) { return std::max(1, static_cast<int>(std::lround(std::min(width, height) / 260.0))); }
+
+}  // namespace
+
+int color_bar_width(int width, int height) { return std::min(width / 3, 64 * text_scale(width, height)); }
 
 std::string color_bar_label(double value) {
   if (value == 0) return "0";
@@ -21,7 +25,7 @@ std::string color_bar_label(double value) {
 }
 
 void draw_color_bar(Image& image, const ColorBar& bar) {
-  const int scale = std::max(1, std::min(image.width, image.height) / 300);
+  const int scale = text_scale(image.width, image.height);
   const int width = color_bar_width(image.width, image.height);
   const int left = image.width - width;
   const int strip_left = left + 4 * scale, strip_right = strip_left + 12 * scale;

@@ -64,6 +64,8 @@ TEST(ViewCli, EveryProbeGivesASensiblePicture) {
                                         "--slices z:3 --color temperature",
                                         "--plane 1,1,0,0.5",
                                         "--core 0,2.5,0.2 --color u",
+                                        "--core 0.5,2.8,0.2 --cutaway --color temperature",
+                                        "--plane 1,0,0.4,0.3 --cutaway",
                                         "--paddlewheel z:4 --color temperature --range 0,100",
                                         "--paddlewheel x:3@0,2.5,0 --faces --camera 0,-1,-0.3"};
   for (std::size_t i = 0; i < probes.size(); ++i) {
@@ -110,6 +112,7 @@ TEST(ViewCli, BadInputExitsTwoAndWritesNothing) {
       {"--camera 0,0,0", "--camera"},
       {"--range 5,1", "--range"},
       {"--size 10,10", "--size"},
+      {"--cutaway --slices x:2", "--cutaway"},
   };
   for (const auto& [args, expected] : cases) {
     const auto r = run_cli("view " + kTorus + " -o " + png + " --mesh " + mesh + " " + args, dir.path());

@@ -17,20 +17,11 @@
 
 #include <Eigen/Core>
 
+#include "volspline/mesh/plane.h"
 #include "volspline/mesh/triangle_mesh.h"
 #include "volspline/spline/tensor_spline.h"
 
 namespace volspline {
-
-/// The plane of points x with normal·x = offset; `normal` is a unit vector.
-struct Plane {
-  Eigen::Vector3d normal;
-  double offset = 0;
-};
-
-/// The plane through `point` with normal direction `normal` (normalised here).
-/// \throw InvalidInput if normal is zero or either is not finite.
-Plane plane_through(const Eigen::Vector3d& point, const Eigen::Vector3d& normal);
 
 struct SliceOptions {
   /// Segments across the domain per parameter direction, plus every knot (face_samples); the

@@ -43,6 +43,10 @@ struct SolidViewRequest {
   std::vector<Paddlewheel> paddlewheels;
   /// Also the six boundary faces (opaque: they hide what is inside).
   bool faces = false;
+  /// Draw the faces with a wedge cut away — the part on the positive side of every cross
+  /// section and core plane — so those slices are seen in place inside the solid; each such
+  /// slice is trimmed to the wedge's wall. Implies `faces`.
+  bool cutaway = false;
   /// Segments per parameter direction for every surface (plus every knot).
   int resolution = 32;
 
@@ -53,6 +57,10 @@ struct SolidViewRequest {
 /// Every plane of the request (cross sections, series, core, paddlewheels) for solids whose
 /// box is [lo, hi]. \throw InvalidInput for an axis not 0..2, a count < 1 or non-finite input.
 std::vector<Plane> requested_planes(const SolidViewRequest& request, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+
+/// The planes that bound the cut-away wedge (cross sections, then the core planes) when
+/// request.cutaway, else none; a subset of requested_planes.
+std::vector<Plane> cut_planes(const SolidViewRequest& request);
 
 /// The mesh of `volume` for the request: its faces if asked for, its isoparametric surfaces
 /// (parts 7..9) and its slices by `planes` (part 10), every vertex with its parameters.

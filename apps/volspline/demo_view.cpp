@@ -1,0 +1,108 @@
+// The looking-inside examples of `volspline demo` (Lasser 1994 §IV, Figs. 8-13): each is a
+// `volspline view` command, run here exactly as the gallery prints it (inside the demo folder).
+#include "demo_view.h"
+
+#include <iostream>
+#include <sstream>
+
+#include "view_command.h"
+#include "volspline/construct/primitives.h"
+#include "volspline/io/model_file.h"
+
+namespace volspline::cli {
+namespace {
+
+// A solid torus segment carrying a "temperature" attribute that rises along the tube (w) and
+// outwards from the tube's centre line (u): a material field for --color.
+Model torus_with_temperature() {
+  const BSplineVolume volume = torus(3.0, 1.0, 270.0);
+  const auto n = volume.num_control_points();
+  std::vector<double> temperature;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) temperature.push_back(20 + 40.0 * k / (n[2] - 1) + 8.0 * i / (n[0] - 1));
+  Model model;
+  ModelObject object{"torus", false, volume, nullptr};
+  object.attributes["temperature"] = temperature;
+  model.objects.push_back(object);
+  return model;
+}
+
+}  // namespace
+
+std::vector<ViewDemoEntry> write_view_demo(const std::filesystem::path& dir) {
+  write_model(torus_with_temperature(), dir / "torus-temperature.json");
+  struct Example {
+    std::string title, description;
+    ViewArguments arguments;
+  };
+  const auto view = [](std::string model, std::string image) {
+    ViewArguments a;
+    a.model = std::move(model);
+    a.image = std::move(image);
+    a.size = "640,480";
+    a.resolution = 24;
+    return a;
+  };
+  std::vector<Example> examples;
+  {
+    auto a = view("bent-tricubic.json", "view-family-w.png");
+    a.iso = {"w:5"};
+    examples.push_back({"A family of isoparametric surfaces", "Lasser Fig. 8: surfaces w = const of a tricubic volume", a});
+  }
+  for (const char* d : {"u", "v"}) {
+    auto a = view("bent-tricubic.json", std::string("view-family-") + d + ".png");
+    a.iso = {std::string(d) + ":5"};
+    examples.push_back({std::string("Isoparametric surfaces ") + d + " = const", "Lasser Fig. 9: the other two families", a});
+  }
+  {
+    auto a = view("bent-tricubic.json", "view-through-point.png");
+    a.through = "0.35,0.6,0.5";
+    a.color = "jacobian";
+    examples.push_back({"Three surfaces through a point", "Lasser Fig. 10: V(u_i, v, w), V(u, v_j, w), V(u, v, w_k) through V(0.35, 0.6, 0.5), coloured by the Jacobian", a});
+  }
+  {
+    auto a = view("half-torus.json", "view-cross-section.png");
+    a.planes = {"1,0,0.4,0.3"};
+    a.cutaway = true;
+    examples.push_back({"Cross section", "Lasser Fig. 11: the half torus cut by an oblique plane, the part in front cut away", a});
+  }
+  {
+    auto a = view("torus-temperature.json", "view-slices.png");
+    a.slices = {"x:5"};
+    a.color = "temperature";
+    examples.push_back({"A series of parallel slices", "Lasser Fig. 12: five slices x = const, coloured by a material attribute", a});
+  }
+  {
+    auto a = view("torus-temperature.json", "view-core.png");
+    a.core = "0.5,2.8,0.2";
+    a.cutaway = true;
+    a.color = "temperature";
+    examples.push_back({"Core section", "Lasser Fig. 13: three orthogonal slices through a point", a});
+  }
+  {
+    auto a = view("torus-temperature.json", "view-paddlewheel.png");
+    a.paddlewheels = {"z:6"};
+    a.color = "temperature";
+    examples.push_back({"Paddlewheel probe", "six planes through the torus axis", a});
+  }
+  {
+    auto a = view("twisted-loft.json", "view-fold-jacobian.png");
+    a.iso = {"w:4"};
+    a.color = "jacobian";
+    examples.push_back({"Where the map folds", "Joy-Duchaineau Fig. 11's twisted loft: surfaces w = const coloured by the Jacobian, red and blue on the two sides of the fold", a});
+  }
+  std::vector<ViewDemoEntry> entries;
+  for (const auto& e : examples) {
+    ViewArguments run = e.arguments;
+    run.model = (dir / run.model).string();
+    run.image = (dir / run.image).string();
+    std::ostringstream log;
+    run_view(run, log);
+    entries.push_back({e.title, e.description, e.arguments.image, view_command_line(e.arguments)});
+    std::cout << e.arguments.image.substr(0, e.arguments.image.size() - 4) << ": " << e.description << "\n  " << run.image << "\n";
+  }
+  return entries;
+}
+
+}  // namespace volspline::cli

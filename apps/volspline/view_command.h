@@ -1,0 +1,24 @@
+#pragma once
+// The arguments of `volspline view`, shared with `demo`, whose gallery shows the command line
+// that reproduces each picture: the demo runs exactly the command it prints.
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace volspline::cli {
+
+struct ViewArguments {
+  std::string model, image, mesh, color, range, camera, size = "800,600", through, core;
+  std::vector<std::string> iso, slices, planes, paddlewheels;
+  int resolution = 32;
+  bool faces = false, cutaway = false, edges = false, transparent = false, ascii = false;
+};
+
+/// Does what `volspline view` does with these arguments, reporting to `out`.
+/// \throw InvalidInput / IoError as the command reports them.
+void run_view(const ViewArguments& arguments, std::ostream& out);
+
+/// The `volspline view ...` command line for these arguments (paths as given).
+std::string view_command_line(const ViewArguments& arguments);
+
+}  // namespace volspline::cli
