@@ -168,7 +168,7 @@ void run_view(const ViewArguments& a, std::ostream& out) {
     options.scalar_max = std::isnan(range_max) ? coloring.max : range_max;
     options.color_bar_title = field->name();
     mesh_options.vertex_scalars = scalars;
-    mesh_options.scalar_name = field->kind == ScalarKind::Attribute ? "attribute" : field->name();
+    mesh_options.scalar_name = is_ply_property_name(field->name()) ? field->name() : "attribute";
     const auto [low, high] = scalar_range(mesh, options);
     for (const double s : scalars) mesh_options.vertex_colors.push_back(colormap_color(options.colormap, (s - low) / (high - low)));
   }

@@ -84,6 +84,12 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
                      "': expected the extension .ply, .obj, .stl or .glb");
 }
 
+bool is_ply_property_name(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+}
+
 std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<double>& scalars,
                       const std::string& scalar_name) {
   validate_mesh(mesh);
@@ -92,10 +98,7 @@ std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<do
     if (scalars.size() != mesh.num_vertices())
       throw InvalidInput("a PLY scalar needs one value per vertex: " + std::to_string(mesh.num_vertices()) + " vertices, " +
                          std::to_string(scalars.size()) + " values");
-    const bool plain = !scalar_name.empty() && std::all_of(scalar_name.begin(), scalar_name.end(), [](char c) {
-      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-    });
-    if (!plain) throw InvalidInput("a PLY property name must be letters, digits, '_', '-' or '.', got '" + scalar_name + "'");
+    if (!is_ply_property_name(scalar_name)) throw InvalidInput("a PLY property name must be letters, digits, '_', '-' or '.', got '" + scalar_name + "'");
   }
   std::string out;
   out += "ply\n";

@@ -86,7 +86,7 @@ TEST(ViewCli, MeshCarriesTheFieldAndSlicesLieInTheirPlanes) {
                    dir.path());
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string bytes = read_file(ply);
-  EXPECT_NE(bytes.find("property double attribute\n"), std::string::npos);
+  EXPECT_NE(bytes.find("property double temperature\n"), std::string::npos);
   const TriangleMesh mesh = read_mesh(ply);
   ASSERT_GT(mesh.num_triangles(), 100u);
   // The torus spans x in [-4, 4]: two slices at x = -4/3 and 4/3.

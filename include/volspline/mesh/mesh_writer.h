@@ -32,6 +32,9 @@ struct MeshWriteOptions {
   std::vector<Eigen::Vector3d> vertex_colors{};
 };
 
+/// True if `name` can name a PLY property: nonempty, letters, digits, '_', '-' or '.'.
+bool is_ply_property_name(const std::string& name);
+
 /// PLY 1.0, binary_little_endian unless `ascii`: vertices with double x, y, z, u, v, w (position
 /// and parameters) and faces with `list uchar int vertex_indices` and `int part`.
 /// With `scalars` (one per vertex) a further vertex property `double scalar_name` follows w.
