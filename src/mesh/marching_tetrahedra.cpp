@@ -26,6 +26,13 @@ void MarchingTetrahedra::emit(int a, int b, int c, const Eigen::Vector3d& toward
   triangles_.push_back({a, b, c});
 }
 
+void MarchingTetrahedra::reserve(std::size_t vertices, std::size_t triangles) {
+  edge_vertices_.reserve(vertices);
+  vertices_.reserve(vertices);
+  vertex_edges_.reserve(vertices);
+  triangles_.reserve(triangles);
+}
+
 void MarchingTetrahedra::add_tetrahedron(const std::array<Sample, 4>& t) {
   std::array<int, 4> positive{}, negative{};
   int np = 0, nn = 0;

@@ -28,6 +28,9 @@ class MarchingTetrahedra {
   /// points towards the positive side.
   void add_tetrahedron(const std::array<Sample, 4>& tetrahedron);
 
+  /// Room for this many surface vertices and triangles (saves rehashing on large grids).
+  void reserve(std::size_t vertices, std::size_t triangles);
+
   /// Surface vertices (points of the sampled space) and, for each, the ids of the two samples of
   /// its edge (lower id first).
   const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }
