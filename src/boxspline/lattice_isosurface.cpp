@@ -120,7 +120,7 @@ TriangleMesh march_tetrahedra(const TetrahedralGrid& grid) {
             samples[static_cast<std::size_t>(q)] = {static_cast<std::int64_t>(grid.node_index(x + o[0], y + o[1], z + o[2])),
                                                     grid.node_position(x + o[0], y + o[1], z + o[2]), v[q]};
           }
-          marching.add_tetrahedron(samples);
+          marching.add_tetrahedron_oriented_by_corners(samples);
         }
         parts.resize(marching.triangles().size(), part);
       }
