@@ -48,9 +48,9 @@ TEST(BlendExamples, EveryClosedFigureIsClosedAndOutwardOriented) {
 }
 
 TEST(BlendExamples, Fig3TunnelsBelongToTheZeroSet) {
-  // The ellipsoid is joined to the torus around it by four bridges (the blend fillets at ±x, the
-  // rod at ±y), which leaves four windows: genus 4, Euler characteristic −6. The control
-  // polyhedron, the exact spline values and the pointwise smooth minimum all give this.
+  // The ellipsoid is joined to the torus around it in four places (blend fillets across the
+  // narrow gap, and the rod), which leaves four windows: genus 4, Euler characteristic −6. The
+  // control polyhedron, the exact spline values and the pointwise smooth minimum all give this.
   const Scene scene = various_primitives_scene();
   const std::pair<int, long> genus4{1, -6};
   EXPECT_EQ(components_and_euler(scene_zero_set(scene, {.levels = 1, .method = ZeroSetMethod::Control, .statistics = false}).mesh), genus4);
