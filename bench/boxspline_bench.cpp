@@ -1,8 +1,13 @@
-// The 7-direction box spline (issue 6): scattered evaluation of value + gradient, BB form against
-// assembling each piece from the coefficients (the straightforward exact method, baseline); and
-// the cylinder intersection of Peters & Wittman Fig. 1c (control method, two subdivisions).
+// The 7-direction box spline (issue 6). Scattered evaluation of value + gradient, one thread,
+// uniformly random points in the whole domain: LatticeField::evaluate (53 coefficients gathered
+// from the lattice, one table of pieces for all tetrahedra by symmetry) against the piecewise
+// Bernstein–Bézier form (BezierFormField, the previous fast path, 6720 bytes per knot cube) and
+// against assembling from each tetrahedron's own pieces (evaluate_by_own_pieces, the
+// straightforward exact method). And the cylinder intersection of Peters & Wittman Fig. 1c
+// (control method, two subdivisions).
 #include <benchmark/benchmark.h>
 
+#include <memory>
 #include <random>
 
 #include "volspline/boxspline/bezier_form.h"
@@ -14,39 +19,48 @@ namespace {
 
 using namespace volspline;
 
+// Fields by benchmark argument:
+//  0: h = 0.25 on [-1,1]³, 13³ coefficients (BB form 4.9 MB, cache-sized)
+//  1: h = 0.1 on [-1,1]³, 25³ coefficients (BB form 62 MB)
+//  2: the Fig. 1c cylinder intersection after two refinements, 48³ coefficients (BB form 572 MB)
+//  3: 96³ random coefficients (7 MB; the BB form would be 5.2 GB, beyond BezierFormField::kMaxCubes)
 struct Setup {
   LatticeField field;
   std::vector<Eigen::Vector3d> points;
-  explicit Setup(double h) {
-    // h = 0.1: 25³ coefficients, BB form 62 MB (beyond the caches); h = 0.25: 13³, BB form 4.9 MB.
-    field = lattice_covering(Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0), h);
+  std::unique_ptr<BezierFormField> form;
+  explicit Setup(int which) {
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    for (double& c : field.coefficients) c = u(rng);
-    for (int i = 0; i < 1 << 16; ++i) points.emplace_back(u(rng), u(rng), u(rng));
+    if (which == 2) {
+      field = refine(scene_field(cylinder_intersection_scene()), 2);
+    } else {
+      const double h = which == 0 ? 0.25 : which == 1 ? 0.1 : 2.0 / 91.0;
+      field = lattice_covering(Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0), h);
+      for (double& c : field.coefficients) c = u(rng);
+    }
+    const auto [lo, hi] = field.domain();
+    std::uniform_real_distribution<double> t(0.0, 1.0);
+    for (int i = 0; i < 1 << 20; ++i) {
+      Eigen::Vector3d x;
+      for (int d = 0; d < 3; ++d) x[d] = lo[d] + t(rng) * (hi[d] - lo[d]);
+      points.push_back(x);
+    }
+    if (which <= 2) form = std::make_unique<BezierFormField>(field);
   }
 };
 
-const Setup& setup(int which = 0) {
-  static const Setup large(0.1), small(0.25);
-  return which == 0 ? large : small;
+const Setup& setup(int which) {
+  static std::unique_ptr<Setup> fields[4];
+  if (!fields[which]) fields[which] = std::make_unique<Setup>(which);
+  return *fields[which];
 }
 
-void BM_ScatteredValueGradient_BezierForm(benchmark::State& state) {
-  const Setup& s = setup(static_cast<int>(state.range(0)));
-  const BezierFormField form(s.field);
-  std::size_t i = 0;
-  Eigen::Vector3d g;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(form.evaluate(s.points[i], &g));
-    benchmark::DoNotOptimize(g);
-    i = (i + 1) & (s.points.size() - 1);
-  }
+void label(benchmark::State& state, const Setup& s) {
+  state.SetLabel(std::to_string(s.field.size[0]) + "x" + std::to_string(s.field.size[1]) + "x" + std::to_string(s.field.size[2]));
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_ScatteredValueGradient_BezierForm)->Arg(0)->Arg(1);
 
-void BM_ScatteredValueGradient_AssembledBaseline(benchmark::State& state) {
+void BM_ScatteredValueGradient_Lattice(benchmark::State& state) {
   const Setup& s = setup(static_cast<int>(state.range(0)));
   std::size_t i = 0;
   Eigen::Vector3d g;
@@ -55,12 +69,59 @@ void BM_ScatteredValueGradient_AssembledBaseline(benchmark::State& state) {
     benchmark::DoNotOptimize(g);
     i = (i + 1) & (s.points.size() - 1);
   }
-  state.SetItemsProcessed(state.iterations());
+  label(state, s);
 }
-BENCHMARK(BM_ScatteredValueGradient_AssembledBaseline)->Arg(0)->Arg(1);
+BENCHMARK(BM_ScatteredValueGradient_Lattice)->Arg(0)->Arg(1)->Arg(2)->Arg(3);
+
+// The same through the narrower code paths (processors without AVX-512 or AVX2).
+void ScatteredWithCode(benchmark::State& state, EvaluationCode code) {
+  if (!evaluation_code_available(code)) {
+    state.SkipWithError("not supported by this processor");
+    return;
+  }
+  const Setup& s = setup(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  Eigen::Vector3d g;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(evaluate_with_code(s.field, code, s.points[i], &g));
+    benchmark::DoNotOptimize(g);
+    i = (i + 1) & (s.points.size() - 1);
+  }
+  label(state, s);
+}
+void BM_ScatteredValueGradient_LatticeAvx2(benchmark::State& state) { ScatteredWithCode(state, EvaluationCode::Avx2); }
+void BM_ScatteredValueGradient_LatticePortable(benchmark::State& state) { ScatteredWithCode(state, EvaluationCode::Portable); }
+BENCHMARK(BM_ScatteredValueGradient_LatticeAvx2)->Arg(1)->Arg(3);
+BENCHMARK(BM_ScatteredValueGradient_LatticePortable)->Arg(1)->Arg(3);
+
+void BM_ScatteredValueGradient_BezierFormBaseline(benchmark::State& state) {
+  const Setup& s = setup(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  Eigen::Vector3d g;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(s.form->evaluate(s.points[i], &g));
+    benchmark::DoNotOptimize(g);
+    i = (i + 1) & (s.points.size() - 1);
+  }
+  label(state, s);
+}
+BENCHMARK(BM_ScatteredValueGradient_BezierFormBaseline)->Arg(0)->Arg(1)->Arg(2);
+
+void BM_ScatteredValueGradient_OwnPiecesBaseline(benchmark::State& state) {
+  const Setup& s = setup(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  Eigen::Vector3d g;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(evaluate_by_own_pieces(s.field, s.points[i], &g));
+    benchmark::DoNotOptimize(g);
+    i = (i + 1) & (s.points.size() - 1);
+  }
+  label(state, s);
+}
+BENCHMARK(BM_ScatteredValueGradient_OwnPiecesBaseline)->Arg(0)->Arg(3);
 
 void BM_BezierFormConstruction(benchmark::State& state) {
-  const Setup& s = setup();
+  const Setup& s = setup(1);
   for (auto _ : state) benchmark::DoNotOptimize(BezierFormField(s.field));
 }
 BENCHMARK(BM_BezierFormConstruction)->Unit(benchmark::kMillisecond);

@@ -29,7 +29,7 @@ void add_blend_command(CLI::App& app) {
   auto edges = std::make_shared<bool>(false);
   auto size = std::make_shared<std::string>("800,600");
   cmd->add_option("SCENE", *in, "scene file (docs/scene-format.md)")->required();
-  cmd->add_option("-o,--output", *out, "mesh file: .ply, .obj, .stl (or any format the mesh writer knows)")->required();
+  cmd->add_option("-o,--output", *out, "mesh file: .ply, .obj, .stl or .glb")->required();
   cmd->add_option("--levels", *levels, "refinements of the lattice before marching (default 2)")->check(CLI::Range(0, 8));
   cmd->add_option("--method", *method, "control: the paper's control polyhedron (default); exact: exact spline values")
       ->check(CLI::IsMember({"control", "exact"}));

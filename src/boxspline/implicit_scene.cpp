@@ -1,5 +1,6 @@
 #include "volspline/boxspline/implicit_scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -71,23 +72,59 @@ double smooth_minimum(double a, double b, double k) {
   return std::min(a, b) - h * h * h * k / 6.0;
 }
 
-namespace {
-
-/// Smooth minimum with its partial derivatives ∂/∂a, ∂/∂b.
-double smooth_minimum(double a, double b, double k, double& da, double& db) {
-  const double h = std::max(k - std::abs(a - b), 0.0) / k;
-  // d/da of −h³k/6 = −h²/2 · dh/da · k, dh/da = −sign(a − b)/k.
-  const double sign = a < b ? -1.0 : 1.0;
-  const double extra = 0.5 * h * h * sign;
-  if (a < b) {
-    da = 1.0 + extra, db = -extra;
-  } else {
-    da = extra, db = 1.0 - extra;
+double smooth_minimum(std::span<const double> values, double k, std::span<double> derivatives) {
+  const std::size_t n = values.size();
+  const double least = *std::min_element(values.begin(), values.end());
+  // With τ = (t − (least − k/2))/k ∈ [0, 1], P(a_i + u_i > t) = min(1, c_i − τ), c_i = 1 + (a_i − least)/k:
+  // 1 for τ < τ_i = c_i − 1, then the linear factor c_i − τ. Values with τ_i ≥ 1 never take part.
+  //   E[min] = least − k/2 + k ∫_0^1 Π_i P(a_i + u_i > t) dτ.
+  std::vector<std::pair<double, std::size_t>> active;  // (τ_i, i), sorted
+  for (std::size_t i = 0; i < n; ++i) {
+    const double tau = (values[i] - least) / k;
+    if (tau < 1.0) active.emplace_back(tau, i);
   }
-  return std::min(a, b) - h * h * h * k / 6.0;
+  std::sort(active.begin(), active.end());
+  // ∫ of Π_{active j ≠ skip} factors over [τ_first, 1]: the product is a polynomial on each piece
+  // between consecutive τ's; coefficients in τ, integrated exactly.
+  const auto integral = [&](std::size_t skip, std::size_t first) {
+    std::vector<double> poly{1.0};
+    double sum = 0.0;
+    for (std::size_t r = 0; r < active.size(); ++r) {
+      if (r != skip) {
+        // poly *= (c − τ)
+        const double c = 1.0 + active[r].first;
+        std::vector<double> next(poly.size() + 1, 0.0);
+        for (std::size_t d = 0; d < poly.size(); ++d) {
+          next[d] += c * poly[d];
+          next[d + 1] -= poly[d];
+        }
+        poly = std::move(next);
+      }
+      if (r < first) continue;
+      const double lo = active[r].first;
+      const double hi = r + 1 < active.size() ? active[r + 1].first : 1.0;
+      if (!(hi > lo)) continue;
+      double plo = 0.0, phi = 0.0;  // antiderivative at lo, hi (Horner)
+      for (std::size_t d = poly.size(); d-- > 0;) {
+        plo = (plo + poly[d] / static_cast<double>(d + 1)) * lo;
+        phi = (phi + poly[d] / static_cast<double>(d + 1)) * hi;
+      }
+      sum += phi - plo;
+    }
+    return sum;
+  };
+  if (!derivatives.empty()) {
+    std::fill(derivatives.begin(), derivatives.end(), 0.0);
+    if (active.size() == 1) {
+      derivatives[active[0].second] = 1.0;
+    } else {
+      // ∂/∂a_j = (1/k) ∫ [a_j + u_j density at t] Π_{i≠j} P(a_i + u_i > t) dt = ∫_{τ_j}^1 Π_{i≠j} dτ.
+      for (std::size_t r = 0; r < active.size(); ++r) derivatives[active[r].second] = integral(r, r);
+    }
+  }
+  if (active.size() == 1) return least;
+  return least - 0.5 * k + k * integral(active.size(), 0);
 }
-
-}  // namespace
 
 double scene_value(const SceneNode& node, const Eigen::Vector3d& x, Eigen::Vector3d* gradient) {
   switch (node.operation) {
@@ -109,21 +146,16 @@ double scene_value(const SceneNode& node, const Eigen::Vector3d& x, Eigen::Vecto
       return best;
     }
     case SceneOperation::Blend: {
-      Eigen::Vector3d g_acc = Eigen::Vector3d::Zero();
-      double acc = 0.0;
-      for (std::size_t i = 0; i < node.children.size(); ++i) {
-        Eigen::Vector3d g;
-        const double v = scene_value(node.children[i], x, gradient != nullptr ? &g : nullptr);
-        if (i == 0) {
-          acc = v, g_acc = g;
-        } else {
-          double da = 0, db = 0;
-          acc = smooth_minimum(acc, v, node.radius, da, db);
-          if (gradient != nullptr) g_acc = da * g_acc + db * g;
-        }
+      const std::size_t n = node.children.size();
+      std::vector<double> values(n), weights(gradient != nullptr ? n : 0);
+      std::vector<Eigen::Vector3d> gradients(gradient != nullptr ? n : 0);
+      for (std::size_t i = 0; i < n; ++i) values[i] = scene_value(node.children[i], x, gradient != nullptr ? &gradients[i] : nullptr);
+      const double value = smooth_minimum(values, node.radius, weights);
+      if (gradient != nullptr) {
+        gradient->setZero();
+        for (std::size_t i = 0; i < n; ++i) *gradient += weights[i] * gradients[i];
       }
-      if (gradient != nullptr) *gradient = g_acc;
-      return acc;
+      return value;
     }
   }
   return 0.0;
@@ -136,6 +168,17 @@ std::vector<double> node_coefficients(const SceneNode& node, const LatticeField&
     LatticeField field = lattice;
     quasi_interpolate(field, [&](const Eigen::Vector3d& x) { return node.primitive.value(x); });
     return std::move(field.coefficients);
+  }
+  if (node.operation == SceneOperation::Blend) {
+    // The n-ary smooth minimum, entry by entry (symmetric in the children).
+    std::vector<std::vector<double>> children;
+    for (const SceneNode& child : node.children) children.push_back(node_coefficients(child, lattice));
+    std::vector<double> out(children.front().size()), entry(children.size());
+    for (std::size_t j = 0; j < out.size(); ++j) {
+      for (std::size_t i = 0; i < children.size(); ++i) entry[i] = children[i][j];
+      out[j] = volspline::smooth_minimum(entry, node.radius);
+    }
+    return out;
   }
   std::vector<double> acc;
   for (std::size_t i = 0; i < node.children.size(); ++i) {
@@ -156,8 +199,6 @@ std::vector<double> node_coefficients(const SceneNode& node, const LatticeField&
           acc[j] = std::max(acc[j], -c[j]);
           break;
         case SceneOperation::Blend:
-          acc[j] = volspline::smooth_minimum(acc[j], c[j], node.radius);
-          break;
         case SceneOperation::Primitive:
           break;
       }

@@ -2,11 +2,9 @@
 
 #include <cmath>
 #include <string>
-#include <unordered_map>
-
-#include <Eigen/Geometry>
 
 #include "volspline/core/error.h"
+#include "volspline/mesh/marching_tetrahedra.h"
 
 namespace volspline {
 
@@ -56,16 +54,15 @@ bool inside(double v) { return v < 0.0; }
 
 TriangleMesh march_tetrahedra(const TetrahedralGrid& grid) {
   static const std::array<Tetrahedron, 24> tetrahedra = cube_tetrahedra();
-  TriangleMesh mesh;
-  const auto nodes = grid.nodes();
-  const std::uint64_t node_count = static_cast<std::uint64_t>(nodes[0]) * nodes[1] * nodes[2];
-  std::unordered_map<std::uint64_t, int> edge_vertex;
-  edge_vertex.reserve(8 * static_cast<std::size_t>(grid.cells[0] * grid.cells[1] + grid.cells[1] * grid.cells[2] + grid.cells[0] * grid.cells[2]));
-  mesh.positions.reserve(edge_vertex.bucket_count());
-  mesh.parameters.reserve(edge_vertex.bucket_count());
-  mesh.triangles.reserve(2 * edge_vertex.bucket_count());
-  mesh.parts.reserve(2 * edge_vertex.bucket_count());
-
+  // Surface vertices are made once per partition edge, keyed by the doubled-grid node indices
+  // of its ends (mesh/marching_tetrahedra.h), so the mesh is welded by construction.
+  MarchingTetrahedra marching;
+  const std::size_t expected = 8 * (static_cast<std::size_t>(grid.cells[0]) * grid.cells[1] +
+                                    static_cast<std::size_t>(grid.cells[1]) * grid.cells[2] +
+                                    static_cast<std::size_t>(grid.cells[0]) * grid.cells[2]);
+  marching.reserve(expected, 2 * expected);
+  std::vector<int> parts;
+  parts.reserve(2 * expected);
 
   for (int c = 0; c < grid.cells[2]; ++c)
     for (int b = 0; b < grid.cells[1]; ++b)
@@ -108,56 +105,31 @@ TriangleMesh march_tetrahedra(const TetrahedralGrid& grid) {
                              : grid.cube_parts[static_cast<std::size_t>(a) +
                                                grid.cells[0] * (static_cast<std::size_t>(b) + grid.cells[1] * static_cast<std::size_t>(c))];
         for (const Tetrahedron& tet : tetrahedra) {
-          std::size_t id[4];
           double v[4];
-          Eigen::Vector3d p[4];
           int in = 0;
           for (int q = 0; q < 4; ++q) {
-            const auto& o = tet.vertex[q];
-            id[q] = grid.node_index(x + o[0], y + o[1], z + o[2]);
+            const auto& o = tet.vertex[static_cast<std::size_t>(q)];
             v[q] = local[o[0]][o[1]][o[2]];
-            if (!std::isfinite(v[q])) v[q] = 1.0;
-            p[q] = grid.node_position(x + o[0], y + o[1], z + o[2]);
+            if (!std::isfinite(v[q])) v[q] = 1.0;  // non-finite values count as outside
             in += inside(v[q]);
           }
           if (in == 0 || in == 4) continue;
-          const auto edge = [&](int q0, int q1) {
-            std::size_t n0 = id[q0], n1 = id[q1];
-            int r0 = q0, r1 = q1;
-            if (n0 > n1) std::swap(n0, n1), std::swap(r0, r1);
-            const std::uint64_t key = static_cast<std::uint64_t>(n0) * node_count + n1;
-            const auto [it, added] = edge_vertex.try_emplace(key, 0);
-            if (added) {
-              const double t = v[r0] / (v[r0] - v[r1]);
-              const Eigen::Vector3d position = p[r0] + t * (p[r1] - p[r0]);
-              it->second = mesh.add_vertex(position, position);
-            }
-            return it->second;
-          };
-          // A positive vertex orients each triangle: its normal points towards it.
-          int outside_vertex = 0;
-          while (inside(v[outside_vertex])) ++outside_vertex;
-          const auto emit = [&](int i0, int i1, int i2) {
-            const Eigen::Vector3d& a0 = mesh.positions[static_cast<std::size_t>(i0)];
-            const Eigen::Vector3d n = (mesh.positions[static_cast<std::size_t>(i1)] - a0).cross(mesh.positions[static_cast<std::size_t>(i2)] - a0);
-            if (n.dot(p[outside_vertex] - a0) >= 0.0) mesh.add_triangle(i0, i1, i2, part);
-            else mesh.add_triangle(i0, i2, i1, part);
-          };
-          int ins[4], outs[4], ni = 0, no = 0;
-          for (int q = 0; q < 4; ++q) (inside(v[q]) ? ins[ni++] : outs[no++]) = q;
-          if (ni == 1 || no == 1) {
-            const int lone = ni == 1 ? ins[0] : outs[0];
-            const int* others = ni == 1 ? outs : ins;
-            emit(edge(lone, others[0]), edge(lone, others[1]), edge(lone, others[2]));
-          } else {
-            // Two inside (i0, i1), two outside (o0, o1): the quadrilateral i0o0, i0o1, i1o1, i1o0.
-            const int e0 = edge(ins[0], outs[0]), e1 = edge(ins[0], outs[1]), e2 = edge(ins[1], outs[1]),
-                      e3 = edge(ins[1], outs[0]);
-            emit(e0, e1, e2);
-            emit(e0, e2, e3);
+          std::array<MarchingTetrahedra::Sample, 4> samples;
+          for (int q = 0; q < 4; ++q) {
+            const auto& o = tet.vertex[static_cast<std::size_t>(q)];
+            samples[static_cast<std::size_t>(q)] = {static_cast<std::int64_t>(grid.node_index(x + o[0], y + o[1], z + o[2])),
+                                                    grid.node_position(x + o[0], y + o[1], z + o[2]), v[q]};
           }
+          marching.add_tetrahedron_oriented_by_corners(samples);
         }
+        parts.resize(marching.triangles().size(), part);
       }
+
+  TriangleMesh mesh;
+  mesh.positions = marching.vertices();
+  mesh.parameters = mesh.positions;
+  mesh.triangles = marching.triangles();
+  mesh.parts = std::move(parts);
   return mesh;
 }
 

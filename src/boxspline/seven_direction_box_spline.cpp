@@ -225,6 +225,13 @@ const SevenDirectionBoxSpline& seven_direction_box_spline() {
             s.pieces_on_tetrahedron[t].push_back(static_cast<int>(s.pieces.size()));
             s.pieces.push_back(piece);
           }
+    // Tetrahedron 0 of uncentred knot cube q is tetrahedron 0 of the centred knot cube around
+    // m = q − (0, 0, 2); a piece of cube p there belongs to the shift j = q − p = m + r.
+    for (const int p : s.pieces_on_tetrahedron[0]) {
+      const auto& piece = s.pieces[static_cast<std::size_t>(p)];
+      s.canonical_offsets.push_back({-piece.cube[0], -piece.cube[1], 2 - piece.cube[2]});
+      s.canonical_bb.push_back(piece.bb);
+    }
     return s;
   }();
   return tables;

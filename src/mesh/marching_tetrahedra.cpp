@@ -26,6 +26,13 @@ void MarchingTetrahedra::emit(int a, int b, int c, const Eigen::Vector3d& toward
   triangles_.push_back({a, b, c});
 }
 
+void MarchingTetrahedra::reserve(std::size_t vertices, std::size_t triangles) {
+  edge_vertices_.reserve(vertices);
+  vertices_.reserve(vertices);
+  vertex_edges_.reserve(vertices);
+  triangles_.reserve(triangles);
+}
+
 void MarchingTetrahedra::add_tetrahedron(const std::array<Sample, 4>& t) {
   std::array<int, 4> positive{}, negative{};
   int np = 0, nn = 0;
@@ -60,6 +67,54 @@ void MarchingTetrahedra::add_tetrahedron(const std::array<Sample, 4>& t) {
             d = edge_vertex(s(p1), s(n0));
   emit(a, b, c, toward);
   emit(a, c, d, toward);
+}
+
+void MarchingTetrahedra::add_tetrahedron_oriented_by_corners(const std::array<Sample, 4>& t) {
+  std::array<int, 4> positive{}, negative{};
+  int np = 0, nn = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (t[static_cast<std::size_t>(i)].value >= 0) {
+      positive[static_cast<std::size_t>(np++)] = i;
+    } else {
+      negative[static_cast<std::size_t>(nn++)] = i;
+    }
+  }
+  if (np == 0 || nn == 0) return;
+  auto s = [&](int i) -> const Sample& { return t[static_cast<std::size_t>(i)]; };
+  const auto det = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) { return a.dot(b.cross(c)); };
+  if (np == 1 || nn == 1) {
+    // Surface vertex P_x = L + t_x (O_x − L) on the edge from the lone corner L to O_x, t_x ∈ [0, 1]:
+    // (P_b − P_a) × (P_c − P_a) · (L − P_a) = −t_a t_b t_c det(O_a − L, O_b − L, O_c − L), so the
+    // corners' determinant decides the order even where some t_x = 0.
+    const int lone = np == 1 ? positive[0] : negative[0];
+    std::array<int, 3> o{};
+    int m = 0;
+    for (int i = 0; i < 4; ++i) {
+      if (i != lone) o[static_cast<std::size_t>(m++)] = i;
+    }
+    const Eigen::Vector3d& l = s(lone).point;
+    const double d = det(s(o[0]).point - l, s(o[1]).point - l, s(o[2]).point - l);
+    std::array<int, 3> v{edge_vertex(s(lone), s(o[0])), edge_vertex(s(lone), s(o[1])), edge_vertex(s(lone), s(o[2]))};
+    // Normal towards L wanted if L is positive (d < 0 then), away from it if L is negative.
+    if ((np == 1) == (d > 0)) std::swap(v[1], v[2]);
+    triangles_.push_back(v);
+    return;
+  }
+  // The quadrilateral p0-n0, p0-n1, p1-n1, p1-n0 is a plane section of the tetrahedron; its
+  // orientation is that of the section through the edge midpoints, where the normal of the
+  // first triangle dotted with (p0 + p1 − n0 − n1) is det(n1 − n0, p1 − p0, p0 + p1 − n0 − n1) / 4.
+  const int p0 = positive[0], p1 = positive[1], n0 = negative[0], n1 = negative[1];
+  const double d = det(s(n1).point - s(n0).point, s(p1).point - s(p0).point,
+                       s(p0).point + s(p1).point - s(n0).point - s(n1).point);
+  const int a = edge_vertex(s(p0), s(n0)), b = edge_vertex(s(p0), s(n1)), c = edge_vertex(s(p1), s(n1)),
+            e = edge_vertex(s(p1), s(n0));
+  if (d > 0) {
+    triangles_.push_back({a, b, c});
+    triangles_.push_back({a, c, e});
+  } else {
+    triangles_.push_back({a, c, b});
+    triangles_.push_back({a, e, c});
+  }
 }
 
 }  // namespace volspline

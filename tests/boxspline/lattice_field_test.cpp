@@ -11,6 +11,7 @@
 #include <random>
 
 #include "volspline/boxspline/bezier_form.h"
+#include "volspline/boxspline/quartic_tables.h"
 #include "volspline/boxspline/seven_direction_box_spline.h"
 #include "volspline/core/error.h"
 
@@ -259,6 +260,47 @@ TEST(LatticeField, TorusIsApproximatedToFourthOrder) {
   EXPECT_LT(errors.back(), 1e-4);
 }
 
+TEST(LatticeField, SymmetricEvaluationEqualsEachTetrahedronsOwnPieces) {
+  // LatticeField::evaluate uses one table of pieces (tetrahedron 0) for all 24 tetrahedra via the
+  // signed-permutation symmetry of M_c; evaluate_by_own_pieces uses each tetrahedron's own pieces.
+  const LatticeField f = random_field({9, 11, 10}, 0.4, Eigen::Vector3d(-0.7, 0.2, 1.1), 21);
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  std::array<int, 24> seen{};
+  const auto compare = [&](const Eigen::Vector3d& x) {
+    Eigen::Vector3d g1;
+    Eigen::Matrix3d h1;
+    const double v1 = evaluate_by_own_pieces(f, x, &g1, &h1);
+    // Every code path this processor runs (the vector widths differ, the arithmetic does not).
+    for (const EvaluationCode code : {EvaluationCode::Best, EvaluationCode::Avx512, EvaluationCode::Avx2, EvaluationCode::Portable}) {
+      if (!evaluation_code_available(code)) continue;
+      Eigen::Vector3d g0;
+      Eigen::Matrix3d h0;
+      const double v0 = evaluate_with_code(f, code, x, &g0, &h0);
+      EXPECT_NEAR(v0, v1, 1e-12);
+      EXPECT_LT((g0 - g1).norm(), 1e-12 / f.spacing);
+      EXPECT_LT((h0 - h1).norm(), 1e-11 / (f.spacing * f.spacing));
+      EXPECT_EQ(v0, evaluate_with_code(f, code, x));  // derivatives requested or not, the same value
+    }
+    EXPECT_EQ(f.evaluate(x), evaluate_with_code(f, EvaluationCode::Best, x));
+  };
+  for (int trial = 0; trial < 3000; ++trial) {
+    // A random knot cube and a random point of it, so every tetrahedron is hit many times.
+    Eigen::Vector3d d(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d m(2 + rng() % 5, 2 + rng() % 7, 2 + rng() % 6);
+    if (trial % 3 == 1) d[rng() % 3] = (rng() % 2 ? 0.5 : -0.5);  // on a cube face
+    if (trial % 3 == 2) d[1] = (rng() % 2 ? 1.0 : -1.0) * std::abs(d[0]);  // on a diagonal knot plane
+    ++seen[static_cast<std::size_t>(quartic::locate_canonical(d[0], d[1], d[2]).tetrahedron)];
+    compare(f.origin + f.spacing * (m + d));
+  }
+  for (int t = 0; t < 24; ++t) EXPECT_GT(seen[static_cast<std::size_t>(t)], 50) << t;
+  EXPECT_TRUE(evaluation_code_available(EvaluationCode::Portable));
+  // The corners of the domain.
+  const auto [lo, hi] = f.domain();
+  for (int corner = 0; corner < 8; ++corner)
+    compare(Eigen::Vector3d(corner & 1 ? hi.x() : lo.x(), corner & 2 ? hi.y() : lo.y(), corner & 4 ? hi.z() : lo.z()));
+}
+
 TEST(LatticeField, RejectsBadLatticesAndPointsOutsideTheDomain) {
   EXPECT_THROW(LatticeField(Eigen::Vector3d::Zero(), 0.0, {6, 6, 6}), InvalidInput);
   EXPECT_THROW(LatticeField(Eigen::Vector3d::Zero(), 1.0, {4, 6, 6}), InvalidInput);
@@ -266,6 +308,9 @@ TEST(LatticeField, RejectsBadLatticesAndPointsOutsideTheDomain) {
   EXPECT_THROW(lattice_covering(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 1e-9), InvalidInput);
   const LatticeField f(Eigen::Vector3d::Zero(), 1.0, {6, 6, 6});
   EXPECT_THROW(f.value(Eigen::Vector3d(0.5, 2, 2)), InvalidInput);
+  EXPECT_THROW(f.value(Eigen::Vector3d(2, 2, 3.6)), InvalidInput);
+  EXPECT_THROW(f.value(Eigen::Vector3d(2, std::nan(""), 2)), InvalidInput);
+  EXPECT_THROW(evaluate_by_own_pieces(f, Eigen::Vector3d(0.5, 2, 2)), InvalidInput);
   EXPECT_NO_THROW(f.value(Eigen::Vector3d(1.5, 3.5, 2)));
 }
 

@@ -146,8 +146,11 @@ TEST(ZeroSet, BooleanOperationsActOnCoefficients) {
       const double expected = op == SceneOperation::Union          ? std::min(ca, cb)
                               : op == SceneOperation::Intersection ? std::max(ca, cb)
                               : op == SceneOperation::Difference   ? std::max(ca, -cb)
-                                                                   : smooth_minimum(ca, cb, 0.3);
+                                                                   : smooth_minimum(std::array{ca, cb}, 0.3);
       EXPECT_EQ(f.coefficients[j], expected);
+      if (op == SceneOperation::Blend) {
+        EXPECT_NEAR(f.coefficients[j], smooth_minimum(ca, cb, 0.3), 1e-15);
+      }
     }
     // Where one primitive's coefficients win on a whole neighbourhood, the spline is that
     // primitive exactly: far from the other sphere the union is the first sphere.

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
 
 #include "support/cli_runner.h"
 #include "support/temporary_directory.h"
@@ -35,6 +36,42 @@ TEST(BlendCli, WritesMeshPictureAndStatistics) {
   const TriangleMesh mesh = read_mesh(dir / "s.ply");
   EXPECT_EQ(mesh.num_triangles(), stats["triangles"].get<std::size_t>());
   EXPECT_TRUE(std::filesystem::file_size(dir / "s.png") > 1000);
+}
+
+TEST(BlendCli, WritesBinaryGltfWithTheTrianglesOfThePly) {
+  // The same scene written as .ply and as .glb: tinygltf's own loader reads the .glb back, and
+  // its index count is three per triangle of the .ply; positions agree as floats.
+  test::TemporaryDirectory dir;
+  const std::string scene = std::string(VOLSPLINE_SOURCE_DIR) + "/examples/scenes/scene-two-tori.json";
+  for (const char* out : {"s.ply", "s.glb"})
+    ASSERT_EQ(test::run_cli("blend " + scene + " -o " + (dir / out).string() + " --levels 1", dir.path()).code, 0) << out;
+  const TriangleMesh ply = read_mesh(dir / "s.ply");
+  ASSERT_GT(ply.num_triangles(), 1000u);
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string error, warning;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, (dir / "s.glb").string())) << error;
+  EXPECT_TRUE(warning.empty()) << warning;
+  std::size_t indices = 0;
+  std::vector<float> lo(3, 1e30f), hi(3, -1e30f);
+  for (const tinygltf::Mesh& mesh : model.meshes)
+    for (const tinygltf::Primitive& primitive : mesh.primitives) {
+      EXPECT_EQ(primitive.mode, TINYGLTF_MODE_TRIANGLES);
+      indices += model.accessors.at(static_cast<std::size_t>(primitive.indices)).count;
+      const tinygltf::Accessor& position = model.accessors.at(static_cast<std::size_t>(primitive.attributes.at("POSITION")));
+      for (int d = 0; d < 3; ++d) {
+        lo[static_cast<std::size_t>(d)] = std::min(lo[static_cast<std::size_t>(d)], static_cast<float>(position.minValues.at(static_cast<std::size_t>(d))));
+        hi[static_cast<std::size_t>(d)] = std::max(hi[static_cast<std::size_t>(d)], static_cast<float>(position.maxValues.at(static_cast<std::size_t>(d))));
+      }
+    }
+  EXPECT_EQ(indices, 3 * ply.num_triangles());
+  // The bounding boxes agree (glTF stores float positions).
+  Eigen::Vector3d ply_lo = ply.positions[0], ply_hi = ply.positions[0];
+  for (const auto& x : ply.positions) ply_lo = ply_lo.cwiseMin(x), ply_hi = ply_hi.cwiseMax(x);
+  for (int d = 0; d < 3; ++d) {
+    EXPECT_NEAR(lo[static_cast<std::size_t>(d)], ply_lo[d], 1e-5);
+    EXPECT_NEAR(hi[static_cast<std::size_t>(d)], ply_hi[d], 1e-5);
+  }
 }
 
 TEST(BlendCli, ExampleScenesMeshClosed) {

@@ -14,6 +14,7 @@
 //    the operations; docs/blend.md explains what this does to the surface.
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -71,8 +72,19 @@ struct SceneNode {
 /// derivative is continuous where |a − b| = k and at a = b).
 double smooth_minimum(double a, double b, double k);
 
+/// The C² smooth minimum of any number of values with radius k > 0: the expected value
+///   E[min_i (a_i + u_i)],  u_i independent and uniform on [−k/2, k/2].
+/// Symmetric in its arguments; equal to min where every other value exceeds the least by at least
+/// k; for two values equal to smooth_minimum(a, b, k) (whose correction term is exactly this
+/// expectation). C² because its Hessian is the Hessian measure of min (on the tie hyperplanes
+/// a_i = a_j) smoothed by the box [−k/2, k/2]^n, whose faces are never parallel to a tie
+/// hyperplane. If `derivatives` is not empty (it must then have values.size() entries), it gets
+/// the partial derivatives, the probabilities that each value is the least (they sum to 1).
+/// Cost: O(m³) for m values within k of the least, O(n) otherwise.
+double smooth_minimum(std::span<const double> values, double k, std::span<double> derivatives = {});
+
 /// The pointwise (CSG) function of a node and optionally its gradient: union = min, intersection
-/// = max, difference(A, B) = max(A, −B), blend = smooth_minimum folded left to right.
+/// = max, difference(A, B) = max(A, −B), blend = the n-ary smooth_minimum of the children.
 double scene_value(const SceneNode& node, const Eigen::Vector3d& x, Eigen::Vector3d* gradient = nullptr);
 
 struct Scene {

@@ -43,12 +43,29 @@ struct LatticeField {
   bool in_domain(const Eigen::Vector3d& x) const;
 
   /// f(x) with optional gradient and Hessian (world units), exactly: the BB form of the piece
-  /// containing x is assembled from the nearby coefficients and evaluated by de Casteljau.
-  /// About 1 µs per point; for many points build a BezierFormField.
+  /// containing x is assembled from the 53 nearby coefficients, using the symmetry of M so that
+  /// one table of 53 pieces serves all 24 tetrahedra (seven_direction_box_spline.h), and
+  /// evaluated by de Casteljau. The fast path for scattered points (docs/performance.md).
   /// \throw InvalidInput if x is not in domain().
   double evaluate(const Eigen::Vector3d& x, Eigen::Vector3d* gradient = nullptr, Eigen::Matrix3d* hessian = nullptr) const;
   double value(const Eigen::Vector3d& x) const { return evaluate(x); }
 };
+
+/// Code paths of LatticeField::evaluate: the same arithmetic for vectors of 8, 4 or 2 lanes.
+/// Best (what evaluate uses) is the widest this processor runs; Avx512 and Avx2 exist for GCC
+/// on x86-64 only and may differ from Portable in the last bits (fused multiply-adds).
+enum class EvaluationCode { Best, Avx512, Avx2, Portable };
+bool evaluation_code_available(EvaluationCode code);
+/// LatticeField::evaluate through a given code path (for tests and benchmarks).
+/// \throw InvalidInput if this processor cannot run it, or as LatticeField::evaluate.
+double evaluate_with_code(const LatticeField& field, EvaluationCode code, const Eigen::Vector3d& x, Eigen::Vector3d* gradient = nullptr,
+                          Eigen::Matrix3d* hessian = nullptr);
+
+/// f(x) as LatticeField::evaluate, but from the pieces of M on x's own tetrahedron (24 tables,
+/// no symmetry used): the independent reference for tests and the baseline for benchmarks.
+/// \throw InvalidInput if x is not in the field's domain.
+double evaluate_by_own_pieces(const LatticeField& field, const Eigen::Vector3d& x, Eigen::Vector3d* gradient = nullptr,
+                              Eigen::Matrix3d* hessian = nullptr);
 
 /// The same function on the lattice of half the spacing (§7: copy each coefficient to its 8
 /// children, then average along the four diagonal directions one after the other, i.e. the mask

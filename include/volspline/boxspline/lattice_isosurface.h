@@ -55,11 +55,13 @@ struct TetrahedralGrid {
 };
 
 /// The zero set of the piecewise linear interpolant of the grid values on the tetrahedral
-/// partition. Vertices are placed on sign-changing edges by linear interpolation (negative
-/// means inside; a zero value counts as outside) and shared between all triangles using the
-/// edge, so the mesh is welded by construction and closed wherever the zero set does not leave
-/// the grid. Triangles are counter-clockwise seen from the positive side. Vertex parameters are
-/// the positions. Non-finite values count as outside.
+/// partition, by the project's marching tetrahedra (mesh/marching_tetrahedra.h) with the
+/// doubled-grid node indices as sample ids. Vertices are placed on sign-changing edges by linear
+/// interpolation (negative means inside; a zero value counts as outside) and shared between all
+/// triangles using the edge, so the mesh is welded by construction and closed wherever the zero
+/// set does not leave the grid. Triangles are counter-clockwise seen from the positive side.
+/// Vertex parameters are the positions; each triangle gets its cube's part. Non-finite values
+/// count as outside.
 TriangleMesh march_tetrahedra(const TetrahedralGrid& grid);
 
 }  // namespace volspline

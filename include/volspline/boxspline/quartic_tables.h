@@ -96,6 +96,29 @@ inline CubeLocation locate(double x, double y, double z) {
   return out;
 }
 
+/// A point d of a centred knot cube [-1/2, 1/2]³: its tetrahedron t (numbered as by locate) and
+/// its barycentric coordinates there. The signed permutation of the axes taking d to
+/// d0[a] = ±d[axis[a]] (face axis i to x, edge axis j to y, both to their negative sides, k to z)
+/// maps tetrahedron t onto tetrahedron 0, and d0's barycentric coordinates in tetrahedron 0 are
+/// the same numbers.
+struct CanonicalLocation {
+  int tetrahedron;
+  double barycentric[4];
+};
+
+inline CanonicalLocation locate_canonical(double dx, double dy, double dz) {
+  const double d[3] = {dx, dy, dz};
+  const double a[3] = {std::abs(dx), std::abs(dy), std::abs(dz)};
+  // The decisions of locate() as a table (random points make its branches unpredictable):
+  // index bits a0 ≥ a1, a0 ≥ a2, a1 ≥ a2; entry (i, j, k, jslot).
+  static constexpr signed char kOrder[8][4] = {{2, 1, 0, 1}, {2, 0, 1, 0}, {2, 1, 0, 1}, {0, 2, 1, 1},
+                                               {1, 2, 0, 0}, {2, 0, 1, 0}, {1, 0, 2, 1}, {0, 1, 2, 0}};
+  const auto& o = kOrder[(a[0] >= a[1]) | (a[0] >= a[2]) << 1 | (a[1] >= a[2]) << 2];
+  const int i = o[0], j = o[1], k = o[2];
+  const int si = d[i] >= 0.0, sj = d[j] >= 0.0;
+  return CanonicalLocation{((i * 2 + si) * 2 + o[3]) * 2 + sj, {1.0 - 2.0 * a[i], 2.0 * (a[i] - a[j]), a[j] - d[k], a[j] + d[k]}};
+}
+
 /// de Casteljau on a quartic in BB form: value, and (optionally) gradient and Hessian in cube
 /// units from the degree-1 and degree-2 intermediates (∂f/∂λ_k = 4 b¹_k,
 /// ∂²f/∂λ_k∂λ_l = 12 b²_{e_k+e_l}) and the constant gradients of the λ's.

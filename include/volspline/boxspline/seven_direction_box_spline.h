@@ -77,6 +77,16 @@ struct SevenDirectionBoxSpline {
   double value(const Eigen::Vector3d& x) const;
 
   std::vector<double> eighths;  ///< M on 8·[-2,3]²x[0,5] ∩ Z³ (41³ values, x fastest)
+
+  /// The pieces of a centred field on tetrahedron 0 of the knot cube centred at a lattice point
+  /// m: the shifts M_c(· − r) nonzero there, as offsets r (the coefficient c_{m+r}), and their BB
+  /// coefficients on that tetrahedron.
+  /// M_c is invariant under the 48 signed permutations of the axes (they permute the seven
+  /// directions up to sign, and the centred spline does not see signs), and every tetrahedron of
+  /// the cube is the image of tetrahedron 0 under one of them, with the same barycentric
+  /// coordinates; so these 53 pieces serve all 24 tetrahedra (lattice_field.cpp).
+  std::vector<std::array<int, 3>> canonical_offsets;
+  std::vector<std::array<double, kQuarticCoefficients>> canonical_bb;
 };
 
 /// The tables, built on first use (thread-safe).

@@ -28,6 +28,17 @@ class MarchingTetrahedra {
   /// points towards the positive side.
   void add_tetrahedron(const std::array<Sample, 4>& tetrahedron);
 
+  /// As add_tetrahedron, but each triangle is oriented from the tetrahedron's corners (which of
+  /// them are positive, and the sign of its volume), not from the triangle's own normal. The two
+  /// agree on triangles of positive area. Where a sample value is exactly 0, surface vertices
+  /// coincide with that sample and triangles of zero area appear; add_tetrahedron orients those
+  /// arbitrarily (the mesh is then closed but not consistently oriented), this orients them like
+  /// their neighbours (as if the 0 were a tiny positive value).
+  void add_tetrahedron_oriented_by_corners(const std::array<Sample, 4>& tetrahedron);
+
+  /// Room for this many surface vertices and triangles (saves rehashing on large grids).
+  void reserve(std::size_t vertices, std::size_t triangles);
+
   /// Surface vertices (points of the sampled space) and, for each, the ids of the two samples of
   /// its edge (lower id first).
   const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }
