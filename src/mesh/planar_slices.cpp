@@ -115,7 +115,7 @@ void slice_one(const BSplineVolume& volume, const SampledVolume& grid, const Pla
             if (corner > 0) id += stride[static_cast<std::size_t>(path[corner - 1])];
             tetrahedron[static_cast<std::size_t>(corner)] = {static_cast<std::int64_t>(id), grid.parameter(static_cast<std::int64_t>(id)), g[id]};
           }
-          marching.add_tetrahedron(tetrahedron);
+          marching.add_tetrahedron_oriented_by_corners(tetrahedron);
         }
       }
 
