@@ -68,6 +68,7 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
   }
   if (options.max_cells < 1) throw InvalidInput("the cell budget must be at least 1");
   const auto start = std::chrono::steady_clock::now();
+  const ProgressPhase phase(options.progress, "certification");
   JacobianSubdivision subdivision(volume, options.bounds);
   JacobianValidity result;
   result.lower = std::numeric_limits<double>::infinity();
@@ -77,10 +78,18 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
   std::optional<std::pair<Eigen::Vector3d, double>> positive, negative;
   bool unresolved = false;
   double signed_mass = 0;  // sign of the bulk of J, for choosing which sign is the witness
+  // Progress: the share of the domain's volume in finished cells, or of the cell budget spent.
+  double domain_volume = 1, finished_volume = 0;
+  for (int d = 0; d < 3; ++d) domain_volume *= volume.domain_max(d) - volume.domain_min(d);
   auto finish = [&](const JacobianCell& cell) {
     const auto [lo, hi] = subdivision.jacobian_bounds(cell);
     result.lower = std::min(result.lower, lo);
     result.upper = std::max(result.upper, hi);
+    if (phase.active()) {
+      finished_volume += (subdivision.corner_parameter(cell, 7) - subdivision.corner_parameter(cell, 0)).prod();
+      phase.set_fraction(std::max(finished_volume / domain_volume,
+                                  static_cast<double>(result.cells) / static_cast<double>(options.max_cells)));
+    }
   };
   auto record = [&](const JacobianCell& cell) {
     if (options.bounds == JacobianBoundMethod::Bezier) {

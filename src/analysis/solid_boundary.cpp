@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <queue>
 #include <string>
 #include <unordered_map>
@@ -11,6 +12,7 @@
 
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
+#include "volspline/core/progress.h"
 #include "volspline/mesh/face_tessellation.h"
 #include "volspline/mesh/marching_tetrahedra.h"
 
@@ -302,13 +304,18 @@ void finish_surface(const BSplineVolume& volume, MarchingTetrahedra& mt, const B
   auto t = Clock::now();
   const auto& verts = mt.vertices();
   if (options.snap) {
+    const ProgressPhase phase(options.progress, "snap", static_cast<double>(verts.size()));
     // A vertex may move at most 5% of the largest domain extent: Newton steps that go further
     // have left the basin of the zero set the vertex came from.
     double extent = 0;
     for (int d = 0; d < 3; ++d) extent = std::max(extent, volume.domain_max(d) - volume.domain_min(d));
-    for (std::size_t i = 0; i < verts.size(); ++i) mt.set_vertex(static_cast<int>(i), snap_to_zero(volume, verts[i], 0.05 * extent));
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+      mt.set_vertex(static_cast<int>(i), snap_to_zero(volume, verts[i], 0.05 * extent));
+      phase.advance();
+    }
   }
   out.stats.seconds_snap = options.snap ? since(t) : 0;
+  const ProgressPhase phase(options.progress, "mapping");
   t = Clock::now();
   std::vector<std::array<double, 3>> params(verts.size());
   for (std::size_t i = 0; i < verts.size(); ++i) params[i] = {verts[i][0], verts[i][1], verts[i][2]};
@@ -336,11 +343,22 @@ void finish_surface(const BSplineVolume& volume, MarchingTetrahedra& mt, const B
 SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryOptions& options) {
   SolidBoundary out;
   auto t = Clock::now();
+  std::optional<ProgressPhase> phase(std::in_place, options.progress, "subdivision");
   const JacobianSubdivision sub(volume, options.bounds);
   std::vector<Leaf> leaves;
-  auto leaf_of = [](const JacobianCell& c, bool kept) {
+  // Progress of the subdivision: the share of the domain's volume in finished cells, or of the
+  // cell budget spent, whichever is larger (the queue empties when either reaches 1).
+  double domain_volume = 1, finished_volume = 0;
+  for (int d = 0; d < 3; ++d) domain_volume *= volume.domain_max(d) - volume.domain_min(d);
+  auto leaf_of = [&](const JacobianCell& c, bool kept) {
     Leaf l{c.origin, {}, kept};
     for (int d = 0; d < 3; ++d) l.extent[static_cast<std::size_t>(d)] = JacobianSubdivision::extent(c, d);
+    if (phase->active()) {
+      const Eigen::Vector3d size = sub.corner_parameter(c, 7) - sub.corner_parameter(c, 0);
+      finished_volume += size.prod();
+      phase->set_fraction(std::max(finished_volume / domain_volume,
+                                   static_cast<double>(out.stats.cells_examined) / static_cast<double>(options.max_cells)));
+    }
     return l;
   };
   auto wider = [](const JacobianCell& a, const JacobianCell& b) { return a.width() < b.width(); };
@@ -385,10 +403,12 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
   }
   for (const Leaf& l : leaves) out.stats.cells_kept += l.kept ? 1 : 0;
   out.stats.seconds_subdivision = since(t);
+  phase.reset();
 
   t = Clock::now();
   MarchingTetrahedra mt;
   if (out.stats.cells_kept > 0) {
+    phase.emplace(options.progress, "tetrahedra");
     const ConformingTetrahedra tets(leaves);
     // Ids and J values of every lattice point used, evaluated once each.
     std::unordered_map<Lattice, int, LatticeHash> ids;
@@ -415,6 +435,7 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
       value[i] = Eigen::Vector3d(di[3], di[4], di[5]).dot(Eigen::Vector3d(di[6], di[7], di[8]).cross(Eigen::Vector3d(di[9], di[10], di[11])));
     }
     out.stats.seconds_tetrahedra = since(t);
+    phase.emplace(options.progress, "marching", static_cast<double>(tetrahedra.size()));
     t = Clock::now();
     for (const auto& tet : tetrahedra) {
       std::array<MarchingTetrahedra::Sample, 4> s;
@@ -423,8 +444,10 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
         s[k] = {tet[k], domain[i], value[i]};
       }
       mt.add_tetrahedron(s);
+      phase->advance();
     }
     out.stats.seconds_isosurface = since(t);
+    phase.reset();
   }
   finish_surface(volume, mt, options, out);
   return out;
@@ -433,6 +456,7 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
 SolidBoundary uniform_zero_surface(const BSplineVolume& volume, const BoundaryOptions& options) {
   SolidBoundary out;
   auto t = Clock::now();
+  std::optional<ProgressPhase> phase(std::in_place, options.progress, "sampling");
   const int n = options.resolution;
   std::array<std::vector<double>, 3> samples;
   for (int d = 0; d < 3; ++d) {
@@ -447,6 +471,7 @@ SolidBoundary uniform_zero_surface(const BSplineVolume& volume, const BoundaryOp
   }
   out.stats.cells_examined = static_cast<std::int64_t>(n) * n * n;
   out.stats.seconds_subdivision = since(t);
+  phase.emplace(options.progress, "marching", n);
   t = Clock::now();
   MarchingTetrahedra mt;
   // Six tetrahedra around the main diagonal of each cube (Kuhn): neighbouring cubes agree on
@@ -474,8 +499,10 @@ SolidBoundary uniform_zero_surface(const BSplineVolume& volume, const BoundaryOp
         }
       }
     }
+    phase->advance();
   }
   out.stats.seconds_isosurface = since(t);
+  phase.reset();
   finish_surface(volume, mt, options, out);
   return out;
 }
@@ -498,6 +525,7 @@ SolidBoundary solid_boundary(const BSplineVolume& volume, const BoundaryOptions&
   const auto start = Clock::now();
   SolidBoundary out = jacobian_zero_surface(volume, options);
   auto t = Clock::now();
+  const ProgressPhase phase(options.progress, "faces");
   FaceTessellationOptions face_options;
   face_options.resolution = options.face_resolution;
   TriangleMesh faces = tessellate_faces(volume, face_options);
