@@ -69,12 +69,11 @@ void ProgressReporter::on_event(const ProgressEvent& event) {
   switch (event.kind) {
     case ProgressEvent::Kind::PhaseBegin:
       phase_ = event.phase;
+      unit_ = event.unit;
       in_phase_ = true;
-      fraction_ = 0;
       phase_start_ = now;
       break;
     case ProgressEvent::Kind::Advance:
-      fraction_ = event.fraction;
       break;
     case ProgressEvent::Kind::PhaseEnd:
       in_phase_ = false;
@@ -97,11 +96,15 @@ void ProgressReporter::draw_if_due(Clock::time_point now) {
   std::string name = (label_.empty() ? "" : label_ + " ") + phase_;
   if (name.size() > 28) name = name.substr(0, 27) + "~";
   line << "volspline: " << std::left << std::setw(28) << name << std::right << " ";
-  if (fraction_ > 0) {
+  // The latest figures, also between events (a phase that only counts sends none).
+  const double fraction = progress_.fraction(), done = progress_.done();
+  if (fraction > 0) {
     constexpr int kWidth = 24;
-    const int filled = static_cast<int>(std::lround(fraction_ * kWidth));
+    const int filled = static_cast<int>(std::lround(fraction * kWidth));
     line << "[" << std::string(static_cast<std::size_t>(filled), '#') << std::string(static_cast<std::size_t>(kWidth - filled), '.')
-         << "] " << std::setw(3) << static_cast<int>(std::floor(fraction_ * 100)) << "% ";
+         << "] " << std::setw(3) << static_cast<int>(std::floor(fraction * 100)) << "% ";
+  } else if (done > 0) {
+    line << std::fixed << std::setprecision(0) << done << (unit_.empty() ? "" : " " + unit_) << " ";
   }
   line << std::fixed << std::setprecision(1) << std::chrono::duration<double>(now - phase_start_).count() << " s";
   const std::string text = line.str();

@@ -80,9 +80,8 @@ class ProgressReporter {
   bool drawn_once_ = false;
   std::size_t shown_width_ = 0;  // characters of the bar on screen, 0 when erased
   int drawings_ = 0;
-  std::string label_, phase_;
+  std::string label_, phase_, unit_;
   bool in_phase_ = false;
-  double fraction_ = 0;
   Clock::time_point phase_start_{};
   std::thread ticker_;
 };

@@ -68,7 +68,8 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
   }
   if (options.max_cells < 1) throw InvalidInput("the cell budget must be at least 1");
   const auto start = std::chrono::steady_clock::now();
-  const ProgressPhase phase(options.progress, "certification");
+  // The number of cells needed is not known beforehand: the phase counts them.
+  const ProgressPhase phase(options.progress, "certification", 0, "cells");
   JacobianSubdivision subdivision(volume, options.bounds);
   JacobianValidity result;
   result.lower = std::numeric_limits<double>::infinity();
@@ -78,18 +79,10 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
   std::optional<std::pair<Eigen::Vector3d, double>> positive, negative;
   bool unresolved = false;
   double signed_mass = 0;  // sign of the bulk of J, for choosing which sign is the witness
-  // Progress: the share of the domain's volume in finished cells, or of the cell budget spent.
-  double domain_volume = 1, finished_volume = 0;
-  for (int d = 0; d < 3; ++d) domain_volume *= volume.domain_max(d) - volume.domain_min(d);
   auto finish = [&](const JacobianCell& cell) {
     const auto [lo, hi] = subdivision.jacobian_bounds(cell);
     result.lower = std::min(result.lower, lo);
     result.upper = std::max(result.upper, hi);
-    if (phase.active()) {
-      finished_volume += (subdivision.corner_parameter(cell, 7) - subdivision.corner_parameter(cell, 0)).prod();
-      phase.set_fraction(std::max(finished_volume / domain_volume,
-                                  static_cast<double>(result.cells) / static_cast<double>(options.max_cells)));
-    }
   };
   auto record = [&](const JacobianCell& cell) {
     if (options.bounds == JacobianBoundMethod::Bezier) {
@@ -110,6 +103,7 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
   const auto collapse = collapsed_corner(volume);
   for (auto& cell : subdivision.roots()) {
     ++result.cells;
+    phase.advance();
     record(cell);
     double size = 1;
     const Eigen::Vector3d a = subdivision.corner_parameter(cell, 0), b = subdivision.corner_parameter(cell, 7);
@@ -132,6 +126,7 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
       continue;
     }
     auto [a, b] = subdivision.split(cell, direction);
+    phase.advance(2);
     for (JacobianCell* child : {&a, &b}) {
       ++result.cells;
       record(*child);

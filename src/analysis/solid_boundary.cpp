@@ -343,28 +343,22 @@ void finish_surface(const BSplineVolume& volume, MarchingTetrahedra& mt, const B
 SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryOptions& options) {
   SolidBoundary out;
   auto t = Clock::now();
-  std::optional<ProgressPhase> phase(std::in_place, options.progress, "subdivision");
+  // How many cells the subdivision will examine is not known beforehand (the share of the
+  // domain finished says little: the cells along the zero set take nearly all the time), so it
+  // reports the count.
+  std::optional<ProgressPhase> phase(std::in_place, options.progress, "subdivision", 0, "cells");
   const JacobianSubdivision sub(volume, options.bounds);
   std::vector<Leaf> leaves;
-  // Progress of the subdivision: the share of the domain's volume in finished cells, or of the
-  // cell budget spent, whichever is larger (the queue empties when either reaches 1).
-  double domain_volume = 1, finished_volume = 0;
-  for (int d = 0; d < 3; ++d) domain_volume *= volume.domain_max(d) - volume.domain_min(d);
-  auto leaf_of = [&](const JacobianCell& c, bool kept) {
+  auto leaf_of = [](const JacobianCell& c, bool kept) {
     Leaf l{c.origin, {}, kept};
     for (int d = 0; d < 3; ++d) l.extent[static_cast<std::size_t>(d)] = JacobianSubdivision::extent(c, d);
-    if (phase->active()) {
-      const Eigen::Vector3d size = sub.corner_parameter(c, 7) - sub.corner_parameter(c, 0);
-      finished_volume += size.prod();
-      phase->set_fraction(std::max(finished_volume / domain_volume,
-                                   static_cast<double>(out.stats.cells_examined) / static_cast<double>(options.max_cells)));
-    }
     return l;
   };
   auto wider = [](const JacobianCell& a, const JacobianCell& b) { return a.width() < b.width(); };
   std::priority_queue<JacobianCell, std::vector<JacobianCell>, decltype(wider)> queue(wider);
   for (auto& cell : sub.roots()) {
     ++out.stats.cells_examined;
+    phase->advance();
     if (cell.excludes_zero()) {
       leaves.push_back(leaf_of(cell, false));
     } else {
@@ -392,6 +386,7 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
       continue;
     }
     auto [a, b] = sub.split(cell, direction);
+    phase->advance(2);
     for (JacobianCell* child : {&a, &b}) {
       ++out.stats.cells_examined;
       if (child->excludes_zero()) {

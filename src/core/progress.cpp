@@ -7,24 +7,25 @@ namespace volspline {
 
 Progress::Progress(Listener listener) : listener_(std::move(listener)) {}
 
-void Progress::begin_phase(std::string_view name, double total) {
+void Progress::begin_phase(std::string_view name, double total, std::string_view unit) {
   std::lock_guard lock(mutex_);
   end_phase();
   phase_ = name;
+  unit_ = unit;
   open_ = true;
   start_ = Clock::now();
   total_ = total > 0 && std::isfinite(total) ? total : 0;
   done_ = 0;
   fraction_ = 0;
   published_ = 0;
-  if (listener_) listener_({ProgressEvent::Kind::PhaseBegin, phase_, 0.0, 0.0});
+  if (listener_) listener_({ProgressEvent::Kind::PhaseBegin, phase_, 0.0, 0.0, 0.0, unit_});
 }
 
 void Progress::advance(double units) {
-  const double total = total_.load(std::memory_order_relaxed);
-  if (total <= 0 || !(units > 0)) return;
+  if (!(units > 0)) return;
   const double done = done_.fetch_add(units, std::memory_order_relaxed) + units;
-  set_fraction(done / total);
+  const double total = total_.load(std::memory_order_relaxed);
+  if (total > 0) set_fraction(done / total);
 }
 
 void Progress::set_fraction(double fraction) {
@@ -51,7 +52,8 @@ void Progress::publish(double fraction) {
   if (!open_) return;
   // Another thread may have published a larger fraction meanwhile: report the largest.
   fraction = std::max(fraction, fraction_.load(std::memory_order_relaxed));
-  listener_({ProgressEvent::Kind::Advance, phase_, fraction, std::chrono::duration<double>(Clock::now() - start_).count()});
+  listener_({ProgressEvent::Kind::Advance, phase_, fraction, std::chrono::duration<double>(Clock::now() - start_).count(),
+             done_.load(std::memory_order_relaxed), unit_});
 }
 
 void Progress::end_phase() {
@@ -59,11 +61,16 @@ void Progress::end_phase() {
   if (!open_) return;
   open_ = false;
   const double seconds = std::chrono::duration<double>(Clock::now() - start_).count();
-  if (listener_) listener_({ProgressEvent::Kind::PhaseEnd, phase_, fraction_.load(std::memory_order_relaxed), seconds});
+  if (listener_) {
+    listener_({ProgressEvent::Kind::PhaseEnd, phase_, fraction_.load(std::memory_order_relaxed), seconds,
+               done_.load(std::memory_order_relaxed), unit_});
+  }
   total_ = 0;
 }
 
 double Progress::fraction() const { return fraction_.load(std::memory_order_relaxed); }
+
+double Progress::done() const { return done_.load(std::memory_order_relaxed); }
 
 std::string Progress::phase() const {
   std::lock_guard lock(mutex_);

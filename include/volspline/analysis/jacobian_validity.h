@@ -28,8 +28,7 @@ struct JacobianValidityOptions {
   double tolerance = 1e-12;
   /// Budget of cells examined (bounded), roots included.
   std::int64_t max_cells = 200000;
-  /// Receives the phase "certification" (fraction: share of the domain in finished cells or of
-  /// the cell budget spent). Null: nobody listens.
+  /// Receives the phase "certification" (counts the cells examined). Null: nobody listens.
   Progress* progress = nullptr;
 };
 

@@ -46,9 +46,9 @@ struct BoundaryOptions {
   bool snap = false;
   /// Samples per direction of the face patches (as tessellate_faces).
   int face_resolution = 24;
-  /// Receives the phases "subdivision" (adaptive; fraction: share of the domain in finished
-  /// cells or of the cell budget spent), "sampling" (uniform), "tetrahedra", "marching", "snap",
-  /// "mapping" and, for solid_boundary, "faces". Null: nobody listens.
+  /// Receives the phases "subdivision" (adaptive; counts cells), "sampling" (uniform),
+  /// "tetrahedra", "marching", "snap", "mapping" and, for solid_boundary, "faces". Null: nobody
+  /// listens.
   Progress* progress = nullptr;
 };
 

@@ -32,6 +32,10 @@ struct ProgressEvent {
   double fraction;
   /// Seconds since the phase began.
   double seconds;
+  /// Units counted by advance() in this phase so far (cells, vertices, ...).
+  double done;
+  /// What the units are ("cells"), as given to begin_phase; may be empty.
+  std::string_view unit;
 };
 
 /// Collects the reports of one operation at a time and hands them to a listener.
@@ -51,10 +55,12 @@ class Progress {
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
-  /// Ends the current phase if one is open and begins `name`, with `total` units of work to be
-  /// counted by advance(); total <= 0 means unknown (progress only through set_fraction, or none).
-  void begin_phase(std::string_view name, double total = 0);
-  /// `units` more units of the current phase's total are done.
+  /// Ends the current phase if one is open and begins `name`, with `total` units of work (called
+  /// `unit`, e.g. "cells") to be counted by advance(); total <= 0 means unknown: the fraction
+  /// then comes from set_fraction or stays 0, while advance() still counts.
+  void begin_phase(std::string_view name, double total = 0, std::string_view unit = {});
+  /// `units` more units of the current phase are done. With an unknown total the listener hears
+  /// of it only at the next other event; done() tells the count at any time.
   void advance(double units = 1);
   /// At least `fraction` of the current phase is done (smaller values than the last are ignored,
   /// so that the reported fraction never decreases).
@@ -64,6 +70,8 @@ class Progress {
 
   /// Fraction done of the current phase, in [0, 1].
   double fraction() const;
+  /// Units counted by advance() in the current phase.
+  double done() const;
   /// The current phase's name, empty outside phases.
   std::string phase() const;
 
@@ -75,7 +83,7 @@ class Progress {
   // Guards phase_, open_, start_ and the calls to listener_; recursive so that a listener may
   // ask phase().
   mutable std::recursive_mutex mutex_;
-  std::string phase_;
+  std::string phase_, unit_;
   bool open_ = false;
   Clock::time_point start_{};
   std::atomic<double> total_{0};
@@ -89,8 +97,9 @@ class Progress {
 /// call is a no-op when `progress` is null.
 class ProgressPhase {
  public:
-  ProgressPhase(Progress* progress, std::string_view name, double total = 0) : progress_(progress) {
-    if (progress_) progress_->begin_phase(name, total);
+  ProgressPhase(Progress* progress, std::string_view name, double total = 0, std::string_view unit = {})
+      : progress_(progress) {
+    if (progress_) progress_->begin_phase(name, total, unit);
   }
   ~ProgressPhase() {
     if (progress_) progress_->end_phase();
