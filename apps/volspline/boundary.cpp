@@ -20,7 +20,6 @@ void add_boundary_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("boundary",
                                  "The boundary of every volume (Joy–Duchaineau Theorem 4.1): the six face patches (parts 0..5) "
                                  "plus the implicit surface where the Jacobian vanishes (part 6)");
-  auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto tol = std::make_shared<double>(1e-3);
   auto max_cells = std::make_shared<std::int64_t>(200000);
@@ -34,7 +33,8 @@ void add_boundary_command(CLI::App& app) {
   auto stats_path = std::make_shared<std::string>();
   auto png = std::make_shared<std::string>();
   auto size = std::make_shared<std::string>("800,600");
-  cmd->add_option("MODEL", *in, "model file")->required();
+  const auto input = add_model_input(cmd);
+  const auto in = std::shared_ptr<std::string>(input, &input->path);
   cmd->add_option("-o,--output", *out, "mesh file: .ply (x y z u v w, face part), .obj or .stl")->required();
   cmd->add_option("--tol", *tol, "relative tolerance of the adaptive subdivision (default 1e-3; see --stop)");
   cmd->add_option("--max-cells", *max_cells, "budget of cells examined per volume (default 200000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
@@ -74,7 +74,7 @@ void add_boundary_command(CLI::App& app) {
     options.progress = command_progress();
     const Model model = [&] {
       const ProgressPhase phase(options.progress, "reading");
-      return read_model_file(*in);
+      return input->read();
     }();
     int volume_count = 0;
     for (const auto& object : model.objects) volume_count += std::holds_alternative<BSplineVolume>(object.spline);

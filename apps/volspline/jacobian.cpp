@@ -30,13 +30,13 @@ void add_jacobian_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("jacobian",
                                  "Certify the sign of the Jacobian determinant of every volume: valid (orientation + or -), "
                                  "invalid (with a witness point) or undecided within the budget");
-  auto in = std::make_shared<std::string>();
   auto tol = std::make_shared<double>(1e-12);
   auto max_cells = std::make_shared<std::int64_t>(200000);
   auto bounds = std::make_shared<std::string>("bezier");
   auto json = std::make_shared<bool>(false);
   auto fail = std::make_shared<bool>(false);
-  cmd->add_option("MODEL", *in, "model file")->required();
+  const auto input = add_model_input(cmd);
+  const auto in = std::shared_ptr<std::string>(input, &input->path);
   cmd->add_option("--tol", *tol, "cells whose bound is narrower than TOL x max|J| are not split further (default 1e-12)");
   cmd->add_option("--max-cells", *max_cells, "budget of cells examined per volume (default 200000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
   cmd->add_option("--bounds", *bounds, "bezier (certified Bernstein coefficients, default) or cone (Joy–Duchaineau §5)");
@@ -51,7 +51,7 @@ void add_jacobian_command(CLI::App& app) {
     options.progress = command_progress();
     const Model model = [&] {
       const ProgressPhase phase(options.progress, "reading");
-      return read_model_file(*in);
+      return input->read();
     }();
     int volume_count = 0;
     for (const auto& object : model.objects) volume_count += std::holds_alternative<BSplineVolume>(object.spline);
