@@ -4,6 +4,7 @@
 // faces of a solid and its Jacobian-zero surface can be told apart at a glance.
 #include <Eigen/Core>
 
+#include "volspline/mesh/part_colors.h"  // part_color, used by ColorMode::ByPart
 #include "volspline/mesh/triangle_mesh.h"
 #include "volspline/render/image.h"
 
@@ -43,11 +44,6 @@ struct RenderOptions {
   /// between a solid's faces) stay crisp.
   double crease_angle_deg = 40;
 };
-
-/// The sRGB colour, components in [0, 1], used for a mesh part (core/conventions.h): blue for the
-/// u faces, green for v, purple for w (darker at min, lighter at max), orange-red for the
-/// Jacobian-zero surface, grey for anything else.
-Eigen::Vector3d part_color(int part);
 
 /// Renders `mesh` as seen through a perspective camera fitted to it. A mesh with no visible
 /// triangles gives a picture of the background alone.
