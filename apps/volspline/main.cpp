@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
       ->excludes(verbose);
   // The reporter starts its clock once the command line is parsed, before the subcommand runs.
   app.parse_complete_callback([] { volspline::cli::reporter(); });
+  app.footer("-v and -q may also follow the subcommand. Long work shows a progress bar on stderr when it is a terminal.\n"
+             "Exit codes: 0 success, 2 bad input or usage, 1 internal failure.");
   try {
     app.parse(argc, argv);
     volspline::cli::finish_reporting();
