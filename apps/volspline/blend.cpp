@@ -7,6 +7,7 @@
 
 #include "cli_support.h"
 #include "commands.h"
+#include "progress_bar.h"
 #include "volspline/boxspline/scene_file.h"
 #include "volspline/boxspline/zero_set.h"
 #include "volspline/core/error.h"
@@ -49,10 +50,11 @@ void add_blend_command(CLI::App& app) {
     const Scene scene = read_scene(*in);
     const ZeroSetOptions options{.levels = *levels,
                                  .method = *method == "exact" ? ZeroSetMethod::Exact : ZeroSetMethod::Control,
-                                 .project = *project};
+                                 .project = *project,
+                                 .progress = command_progress()};
     const ZeroSet result = scene_zero_set(scene, options);
     if (result.mesh.num_triangles() == 0)
-      std::cerr << "volspline: warning: the zero set does not cross the meshed region; writing an empty mesh\n";
+      reporter().warn("the zero set does not cross the meshed region; writing an empty mesh");
     const ZeroSetStats& s = result.stats;
     std::string stats_text;
     if (!stats->empty()) {
@@ -75,8 +77,11 @@ void add_blend_command(CLI::App& app) {
     render.width = wh[0];
     render.height = wh[1];
     render.edges = *edges;
-    write_mesh_and_picture(result.mesh, *out, format, *ascii, *png, render);
-    if (!stats->empty()) write_file_atomically(*stats, stats_text);
+    {
+      const ProgressPhase phase(options.progress, "writing");
+      write_mesh_and_picture(result.mesh, *out, format, *ascii, *png, render);
+      if (!stats->empty()) write_file_atomically(*stats, stats_text);
+    }
     std::cout << "wrote " << *out << ": " << s.vertices << " vertices, " << s.triangles << " triangles ("
               << (s.closed ? "closed" : "not closed: " + std::to_string(s.boundary_edges) + " boundary edges") << "), grid spacing "
               << s.grid_spacing << ", largest |f| at a vertex " << s.max_abs_value;

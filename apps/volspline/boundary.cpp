@@ -7,10 +7,11 @@
 
 #include "cli_support.h"
 #include "commands.h"
+#include "progress_bar.h"
 #include "volspline/analysis/solid_boundary.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
-#include "volspline/io/model_file.h"
+#include "volspline/io/model_formats.h"
 #include "volspline/mesh/mesh_writer.h"
 
 namespace volspline::cli {
@@ -19,7 +20,6 @@ void add_boundary_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("boundary",
                                  "The boundary of every volume (Joy–Duchaineau Theorem 4.1): the six face patches (parts 0..5) "
                                  "plus the implicit surface where the Jacobian vanishes (part 6)");
-  auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto tol = std::make_shared<double>(1e-3);
   auto max_cells = std::make_shared<std::int64_t>(200000);
@@ -33,7 +33,8 @@ void add_boundary_command(CLI::App& app) {
   auto stats_path = std::make_shared<std::string>();
   auto png = std::make_shared<std::string>();
   auto size = std::make_shared<std::string>("800,600");
-  cmd->add_option("MODEL", *in, "model file")->required();
+  const auto input = add_model_input(cmd);
+  const auto in = std::shared_ptr<std::string>(input, &input->path);
   cmd->add_option("-o,--output", *out, "mesh file: .ply (x y z u v w, face part), .obj or .stl")->required();
   cmd->add_option("--tol", *tol, "relative tolerance of the adaptive subdivision (default 1e-3; see --stop)");
   cmd->add_option("--max-cells", *max_cells, "budget of cells examined per volume (default 200000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
@@ -70,7 +71,13 @@ void add_boundary_command(CLI::App& app) {
     options.face_resolution = *face_resolution;
     options.min_level = *min_level;
     options.snap = *snap;
-    const Model model = read_model(*in);
+    options.progress = command_progress();
+    const Model model = [&] {
+      const ProgressPhase phase(options.progress, "reading");
+      return input->read();
+    }();
+    int volume_count = 0;
+    for (const auto& object : model.objects) volume_count += std::holds_alternative<BSplineVolume>(object.spline);
     TriangleMesh mesh;
     nlohmann::json stats = {{"objects", nlohmann::json::array()}};
     int volumes = 0;
@@ -79,6 +86,7 @@ void add_boundary_command(CLI::App& app) {
       const auto* v = std::get_if<BSplineVolume>(&model.objects[i].spline);
       if (!v) continue;
       ++volumes;
+      if (volume_count > 1) reporter().set_label("object " + std::to_string(i));
       SolidBoundary b;
       try {
         b = solid_boundary(*v, options);
@@ -109,6 +117,7 @@ void add_boundary_command(CLI::App& app) {
                 << s.triangles[6] << " implicit triangles, max |J| at implicit vertices " << std::setprecision(3)
                 << s.max_rel_jacobian_at_vertices << " of max |J|, " << s.seconds_total * 1e3 << " ms\n";
     }
+    reporter().set_label("");
     if (volumes == 0) throw InvalidInput("the model has no volume objects (bspline_volume or bezier_volume)", *in);
     // The whole-model figures, with the keys the issue names at the top level.
     const auto& first = stats["objects"][0];
@@ -141,8 +150,11 @@ void add_boundary_command(CLI::App& app) {
       stats_file = std::make_unique<AtomicFile>(*stats_path, false);
       stats_file->stream() << stats.dump(2) << "\n";
     }
-    write_mesh_and_picture(mesh, *out, format, false, *png, render);
-    if (stats_file) stats_file->commit();
+    {
+      const ProgressPhase phase(options.progress, "writing");
+      write_mesh_and_picture(mesh, *out, format, false, *png, render);
+      if (stats_file) stats_file->commit();
+    }
     std::cout << "wrote " << *out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles\n";
     if (!png->empty()) std::cout << "wrote " << *png << "\n";
     if (stats_file) std::cout << "wrote " << *stats_path << "\n";

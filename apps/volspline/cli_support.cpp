@@ -1,5 +1,7 @@
 #include "cli_support.h"
 
+#include <CLI/CLI.hpp>
+
 #include <charconv>
 #include <optional>
 #include <cmath>
@@ -8,6 +10,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/io/model_formats.h"
 #include "volspline/render/image.h"
 
 namespace volspline::cli {
@@ -92,6 +95,15 @@ std::string join_numbers(const double* values, std::size_t count) {
     s += format_double(values[i]);
   }
   return s;
+}
+
+Model ModelInput::read() const { return read_model_file(path, format); }
+
+std::shared_ptr<ModelInput> add_model_input(CLI::App* cmd) {
+  auto input = std::make_shared<ModelInput>();
+  cmd->add_option("MODEL", input->path, "model file: .json, G+Smo .xml, IRIT .itd or .vtu (docs/formats.md)")->required();
+  cmd->add_option("--input-format", input->format, "json, gismo, irit or vtu, overriding the extension");
+  return input;
 }
 
 }  // namespace volspline::cli

@@ -1,12 +1,17 @@
 #pragma once
 // Small helpers shared by the subcommands: argument lists, object selection, number printing.
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/mesh_writer.h"
 #include "volspline/render/mesh_renderer.h"
+
+namespace CLI {
+class App;
+}
 
 namespace volspline::cli {
 
@@ -16,6 +21,14 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
 std::vector<int> parse_integers(const std::string& text, std::size_t count, int minimum, const std::string& option);
 /// "u", "v", "w" (or "s" for the 4th) or "0".."3" to a direction index. \throw InvalidInput.
 int parse_direction(const std::string& text, const std::string& option);
+/// The model a subcommand reads: the positional MODEL (any format of io/model_formats.h, by
+/// extension) and --input-format NAME to override the extension.
+struct ModelInput {
+  std::string path, format;
+  /// \throw IoError, InvalidInput as read_model_file.
+  Model read() const;
+};
+std::shared_ptr<ModelInput> add_model_input(CLI::App* cmd);
 /// Number of parameters of an object (1, 2 or 3).
 int parameter_count(const ModelObject& object);
 /// Writes `mesh` to `out` and, unless `png` is empty, its picture to `png`. Both files are

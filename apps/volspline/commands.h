@@ -26,7 +26,8 @@ void add_boundary_command(CLI::App& app);
 void add_blend_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 
-/// Writes the boundary-determination examples of `demo` into `dir`.
-void write_boundary_demo(const std::filesystem::path& dir);
+class DemoRun;
+/// Writes the boundary-determination examples of `demo` (those it wants) and adds them to its gallery.
+void write_boundary_demo(DemoRun& demo);
 
 }  // namespace volspline::cli

@@ -1,9 +1,11 @@
 // volspline convert MODEL -o OUT [--format F] [--input-format F] [--insert-knots DIR:V,...]
 // [--elevate DIR:TIMES] [--bezier]; formats by extension from io/model_formats.h.
 #include <iostream>
+#include <optional>
 
 #include "cli_support.h"
 #include "commands.h"
+#include "progress_bar.h"
 #include "volspline/core/error.h"
 #include "volspline/io/model_formats.h"
 #include "volspline/spline/attribute_spline.h"
@@ -66,7 +68,12 @@ void add_convert_command(CLI::App& app) {
     } else {
       model_format_from_path(*out);
     }
-    Model model = read_model_file(*in, *input_format);
+    Progress* progress = command_progress();
+    Model model = [&] {
+      const ProgressPhase phase(progress, "reading");
+      return read_model_file(*in, *input_format);
+    }();
+    std::optional<ProgressPhase> phase(std::in_place, progress, "converting", static_cast<double>(model.objects.size()));
     Model result;
     result.metadata = model.metadata;
     for (std::size_t i = 0; i < model.objects.size(); ++i) {
@@ -124,8 +131,11 @@ void add_convert_command(CLI::App& app) {
       } catch (const InvalidInput& e) {
         throw e.located(where);
       }
+      phase->advance();
     }
+    phase.emplace(progress, "writing");
     write_model_file(result, *out, *format);
+    phase.reset();
     std::cout << "wrote " << *out << " (" << result.objects.size() << " object(s))\n";
   });
 }

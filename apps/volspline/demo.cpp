@@ -1,5 +1,6 @@
-// volspline demo [--out DIR]: example solids built in code, each written as a model, a face
-// mesh and a picture.
+// volspline demo [--out DIR] [--only NAME...]: example solids built in code, each written as a
+// model, a face mesh and a picture, and index.html, the gallery of the pictures with the command
+// line that reproduces each.
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -7,6 +8,8 @@
 #include "commands.h"
 #include "demo_blend.h"
 #include "demo_view.h"
+#include "demo_gallery.h"
+#include "progress_bar.h"
 #include "volspline/core/error.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/construct/paper_examples.h"
@@ -23,63 +26,92 @@
 namespace volspline::cli {
 
 void add_demo_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("demo", "Build the example solids and write each one's model (.json), faces (.ply) and picture (.png)");
+  auto* cmd = app.add_subcommand(
+      "demo", "Build the example solids and write each one's model (.json), faces (.ply) and picture (.png), and index.html, "
+              "a gallery of the pictures with the command line that reproduces each");
   auto dir = std::make_shared<std::string>("out/demo");
+  auto only = std::make_shared<std::vector<std::string>>();
   cmd->add_option("--out", *dir, "output folder (created if missing; default out/demo)");
+  cmd->add_option("--only", *only, "write only the examples with these names (index.html is then not written)");
   cmd->callback([=] {
     std::error_code ec;
     std::filesystem::create_directories(*dir, ec);
     if (ec || !std::filesystem::is_directory(*dir)) throw IoError("cannot create the output folder '" + *dir + "': " + ec.message());
+    DemoRun demo(*dir, *only, command_progress());
+    // `make` is the `volspline make` arguments that build the same volume; empty where no
+    // subcommand does (then `demo --only` reproduces it).
     struct Example {
       std::string name, description;
       BSplineVolume volume;
+      std::string make;
     };
     const std::vector<Example> examples{
-        {"bent-tricubic", "tricubic B-spline slab bent along u", bent_tricubic_volume()},
-        {"twisted", "column twisted a quarter turn (degree 1, 1, 3)", twisted_volume(0.25)},
+        {"bent-tricubic", "tricubic B-spline slab bent along u", bent_tricubic_volume(), ""},
+        {"twisted", "column twisted a quarter turn (degree 1, 1, 3)", twisted_volume(0.25), ""},
         {"half-cylinder-shell", "exact rational thick half cylinder, weight-0 control points (Lasser Thm 2, 180 deg)",
-         half_cylinder_shell(1.0, 2.0, 1.0)},
-        {"ball", "exact solid ball: a half disk revolved, degree (1, 2, 2)", ball(1.0)},
-        {"torus-segment", "270 degree segment of an exact solid torus", torus(3.0, 1.0, 270.0)},
-        {"hollow-cylinder", "exact thick ring (make cylinder --inner)", cylinder(2.0, 1.0, 1.2)},
-        {"frustum", "exact cone frustum", cone(2.0, 0.7, 3.0)},
-        {"half-torus", "Lasser Fig. 2: solid half torus, one Bezier volume with weight-0 control points", half_torus()},
-        {"hyperboloid", "Lasser Fig. 3: segment of a solid hyperboloid of one sheet", hyperboloid_segment()},
+         half_cylinder_shell(1.0, 2.0, 1.0), ""},
+        {"ball", "exact solid ball: a half disk revolved, degree (1, 2, 2)", ball(1.0), "ball --radius 1"},
+        {"torus-segment", "270 degree segment of an exact solid torus", torus(3.0, 1.0, 270.0),
+         "torus --major 3 --minor 1 --angle 270"},
+        {"hollow-cylinder", "exact thick ring (make cylinder --inner)", cylinder(2.0, 1.0, 1.2),
+         "cylinder --radius 2 --height 1 --inner 1.2"},
+        {"frustum", "exact cone frustum", cone(2.0, 0.7, 3.0), "cone --radius1 2 --radius2 0.7 --height 3"},
+        {"half-torus", "Lasser Fig. 2: solid half torus, one Bezier volume with weight-0 control points", half_torus(),
+         "half-torus"},
+        {"hyperboloid", "Lasser Fig. 3: segment of a solid hyperboloid of one sheet", hyperboloid_segment(), "hyperboloid"},
         {"half-cylinder-sweep", "Joy-Duchaineau Fig. 1: half cylinder swept along a line (folds over itself)",
-         half_cylinder_sweep()},
-        {"swept-patch", "Joy-Duchaineau Fig. 10: bicubic patch swept along a line", swept_patch()},
-        {"twisted-loft", "Joy-Duchaineau Fig. 11: the patch twisted 35 degrees, sampled 4 times and lofted", twisted_loft()},
-        {"curved-loft", "Joy-Duchaineau Fig. 13: the patch swept along a curved path and lofted", curved_loft()},
+         half_cylinder_sweep(), "half-cylinder-sweep"},
+        {"swept-patch", "Joy-Duchaineau Fig. 10: bicubic patch swept along a line", swept_patch(), "swept-patch"},
+        {"twisted-loft", "Joy-Duchaineau Fig. 11: the patch twisted 35 degrees, sampled 4 times and lofted", twisted_loft(),
+         "twisted-loft"},
+        {"curved-loft", "Joy-Duchaineau Fig. 13: the patch swept along a curved path and lofted", curved_loft(), "curved-loft"},
     };
     for (const auto& e : examples) {
-      const std::filesystem::path base = std::filesystem::path(*dir) / e.name;
-      Model model;
-      const bool bezier = std::all_of(e.volume.knot_vectors().begin(), e.volume.knot_vectors().end(),
-                                      [](const KnotVector& k) { return k.is_bezier() && k.domain_min() == 0 && k.domain_max() == 1; });
-      model.objects.push_back({e.name, bezier, e.volume, nullptr});
-      write_model(model, base.string() + ".json");
-      const TriangleMesh mesh = tessellate_faces(e.volume, {.resolution = 32});
-      write_mesh(mesh, base.string() + ".ply");
-      RenderOptions options;
-      options.edges = false;
-      write_png(render_mesh(mesh, options), base.string() + ".png");
-      std::cout << e.name << ": " << e.description << "\n  " << base.string() << ".json\n  " << base.string() << ".ply\n  "
-                << base.string() << ".png\n";
+      if (!demo.wants(e.name)) continue;
+      {
+        const ProgressPhase phase(demo.progress(), e.name);
+        Model model;
+        const bool bezier = std::all_of(e.volume.knot_vectors().begin(), e.volume.knot_vectors().end(),
+                                        [](const KnotVector& k) { return k.is_bezier() && k.domain_min() == 0 && k.domain_max() == 1; });
+        model.objects.push_back({e.name, bezier, e.volume, nullptr});
+        write_model(model, demo.path(e.name + ".json"));
+        // As `volspline faces --resolution 32` (the command in the gallery) tessellates and renders.
+        const TriangleMesh mesh = tessellate_faces(e.volume, {.resolution = 32});
+        write_mesh(mesh, demo.path(e.name + ".ply"));
+        write_png(render_mesh(mesh, RenderOptions{}), demo.path(e.name + ".png"));
+      }
+      std::cout << e.name << ": " << e.description << "\n  " << demo.path(e.name + ".json") << "\n  " << demo.path(e.name + ".ply")
+                << "\n  " << demo.path(e.name + ".png") << "\n";
+      demo.gallery().add({e.name, e.description, {e.name + ".png"},
+                          e.make.empty() ? demo_only_command(e.name)
+                                         : "volspline make " + e.make + " -o " + e.name + ".json && volspline faces " + e.name +
+                                               ".json -o " + e.name + ".ply --resolution 32 --png " + e.name + ".png"});
     }
     // Free-form deformation (Lasser §III.2): a bar bent and twisted by a segmented lattice.
-    const FfdExample ffd = bent_bar_ffd_example();
-    const std::filesystem::path base = std::filesystem::path(*dir) / "ffd-bent-bar";
-    write_model(lattice_to_model(ffd.lattice), base.string() + "-lattice.json");
-    const TriangleMesh bent = deform_mesh(ffd.lattice, ffd.mesh);
-    write_mesh(bent, base.string() + ".ply");
-    RenderOptions options;
-    options.color = ColorMode::Single;
-    write_png(render_mesh(bent, options), base.string() + ".png");
-    std::cout << "ffd-bent-bar: a 4 x 1 x 1 bar deformed by a degree (3, 2, 2) lattice with 3 cells\n  " << base.string()
-              << "-lattice.json\n  " << base.string() << ".ply\n  " << base.string() << ".png\n";
-    write_boundary_demo(*dir);
-    write_blend_demo(*dir);  // Peters-Wittman blends, figures 1a-4c
-    write_view_demo(*dir);   // Lasser §IV: isoparametric surfaces, slices, colouring
+    if (demo.wants("ffd-bent-bar")) {
+      {
+        const ProgressPhase phase(demo.progress(), "ffd-bent-bar");
+        const FfdExample ffd = bent_bar_ffd_example();
+        write_model(lattice_to_model(ffd.lattice), demo.path("ffd-bent-bar-lattice.json"));
+        const TriangleMesh bent = deform_mesh(ffd.lattice, ffd.mesh);
+        write_mesh(bent, demo.path("ffd-bent-bar.ply"));
+        RenderOptions options;
+        options.color = ColorMode::Single;
+        write_png(render_mesh(bent, options), demo.path("ffd-bent-bar.png"));
+      }
+      const std::string description = "a 4 x 1 x 1 bar deformed by a degree (3, 2, 2) lattice with 3 cells (Lasser §III.2)";
+      std::cout << "ffd-bent-bar: " << description << "\n  " << demo.path("ffd-bent-bar-lattice.json") << "\n  "
+                << demo.path("ffd-bent-bar.ply") << "\n  " << demo.path("ffd-bent-bar.png") << "\n";
+      demo.gallery().add({"ffd-bent-bar", description, {"ffd-bent-bar.png"}, demo_only_command("ffd-bent-bar")});
+    }
+    write_boundary_demo(demo);
+    write_blend_demo(demo);  // Peters-Wittman blends, figures 1a-4c
+    write_view_demo(demo);   // Lasser §IV: isoparametric surfaces, slices, cutaways, colouring
+    demo.check_selection();
+    if (!demo.selective()) {
+      demo.gallery().write(*dir);
+      std::cout << "gallery: " << demo.path("index.html") << "\n";
+    }
   });
 }
 

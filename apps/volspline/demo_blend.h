@@ -1,9 +1,10 @@
 #pragma once
-#include <filesystem>
+#include "demo_gallery.h"
 
 namespace volspline::cli {
 
-/// Writes the Peters-Wittman figures 1a .. 4c (mesh .ply and picture .png each) into `dir`.
-void write_blend_demo(const std::filesystem::path& dir);
+/// Writes the Peters-Wittman figures 1a .. 4c (mesh .ply and picture .png each) that `demo`
+/// wants, and adds them to its gallery.
+void write_blend_demo(DemoRun& demo);
 
 }  // namespace volspline::cli

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "demo_gallery.h"
 #include "volspline/analysis/solid_boundary.h"
 #include "volspline/construct/paper_examples.h"
 #include "volspline/construct/primitives.h"
@@ -16,7 +17,7 @@
 
 namespace volspline::cli {
 
-void write_boundary_demo(const std::filesystem::path& dir) {
+void write_boundary_demo(DemoRun& demo) {
   struct Example {
     std::string name, description;
     BSplineVolume volume;
@@ -28,23 +29,33 @@ void write_boundary_demo(const std::filesystem::path& dir) {
       {"curved-loft", "Joy-Duchaineau Fig. 13", curved_loft()},
   };
   for (const auto& e : examples) {
-    BoundaryOptions options;
-    options.snap = true;
-    const SolidBoundary b = solid_boundary(e.volume, options);
-    const std::filesystem::path base = dir / (e.name + "-boundary");
-    write_mesh(b.mesh, base.string() + ".ply");
-    RenderOptions render;
-    write_png(render_mesh(b.mesh, render), base.string() + ".png");
-    const nlohmann::json stats = {{"cells_examined", b.stats.cells_examined},
-                                  {"cells_kept", b.stats.cells_kept},
-                                  {"implicit_triangles", b.stats.triangles[6]},
-                                  {"max_rel_jacobian_at_vertices", b.stats.max_rel_jacobian_at_vertices},
-                                  {"max_domain_distance", b.stats.max_domain_distance},
-                                  {"seconds", b.stats.seconds_total}};
-    write_file_atomically(base.string() + "-stats.json", stats.dump(2) + "\n");
-    std::cout << e.name << "-boundary: " << e.description << "; " << b.stats.cells_examined << " cells examined, "
-              << b.stats.cells_kept << " kept, " << b.stats.triangles[6] << " implicit triangles\n  " << base.string()
-              << ".ply\n  " << base.string() << ".png\n  " << base.string() << "-stats.json\n";
+    const std::string name = e.name + "-boundary";
+    if (!demo.wants(name)) continue;
+    SolidBoundary b;
+    {
+      const ProgressPhase phase(demo.progress(), name);
+      // As `volspline boundary --snap` with its defaults (the command in the gallery).
+      BoundaryOptions options;
+      options.snap = true;
+      b = solid_boundary(e.volume, options);
+      write_mesh(b.mesh, demo.path(name + ".ply"));
+      write_png(render_mesh(b.mesh, RenderOptions{}), demo.path(name + ".png"));
+      const nlohmann::json stats = {{"cells_examined", b.stats.cells_examined},
+                                    {"cells_kept", b.stats.cells_kept},
+                                    {"implicit_triangles", b.stats.triangles[6]},
+                                    {"max_rel_jacobian_at_vertices", b.stats.max_rel_jacobian_at_vertices},
+                                    {"max_domain_distance", b.stats.max_domain_distance},
+                                    {"seconds", b.stats.seconds_total}};
+      write_file_atomically(demo.path(name + "-stats.json"), stats.dump(2) + "\n");
+    }
+    std::cout << name << ": " << e.description << "; " << b.stats.cells_examined << " cells examined, " << b.stats.cells_kept
+              << " kept, " << b.stats.triangles[6] << " implicit triangles\n  " << demo.path(name + ".ply") << "\n  "
+              << demo.path(name + ".png") << "\n  " << demo.path(name + "-stats.json") << "\n";
+    demo.gallery().add({name,
+                        "Boundary (faces and the implicit surface J = 0 in orange), " + e.description,
+                        {name + ".png"},
+                        "volspline make " + e.name + " -o " + e.name + ".json && volspline boundary " + e.name + ".json -o " +
+                            name + ".ply --snap --png " + name + ".png"});
   }
 }
 

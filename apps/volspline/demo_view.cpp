@@ -2,11 +2,16 @@
 // `volspline view` command, run here exactly as the gallery prints it (inside the demo folder).
 #include "demo_view.h"
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
+#include "demo_gallery.h"
 #include "view_command.h"
+#include "volspline/construct/example_solids.h"
+#include "volspline/construct/paper_examples.h"
 #include "volspline/construct/primitives.h"
+#include "volspline/core/progress.h"
 #include "volspline/io/model_file.h"
 
 namespace volspline::cli {
@@ -28,10 +33,24 @@ Model torus_with_temperature() {
   return model;
 }
 
+void write_if_absent(const std::filesystem::path& path, const std::string& name, const BSplineVolume& volume) {
+  if (std::filesystem::exists(path)) return;
+  const bool bezier = std::all_of(volume.knot_vectors().begin(), volume.knot_vectors().end(),
+                                  [](const KnotVector& k) { return k.is_bezier() && k.domain_min() == 0 && k.domain_max() == 1; });
+  Model model;
+  model.objects.push_back({name, bezier, volume, nullptr});
+  write_model(model, path);
+}
+
 }  // namespace
 
-std::vector<ViewDemoEntry> write_view_demo(const std::filesystem::path& dir) {
+void write_view_demo(DemoRun& demo) {
+  if (!demo.wants_group("view-", "view-family-w..view-fold-jacobian")) return;
+  const std::filesystem::path& dir = demo.dir();
   write_model(torus_with_temperature(), dir / "torus-temperature.json");
+  write_if_absent(dir / "bent-tricubic.json", "bent-tricubic", bent_tricubic_volume());
+  write_if_absent(dir / "half-torus.json", "half-torus", half_torus());
+  write_if_absent(dir / "twisted-loft.json", "twisted-loft", twisted_loft());
   struct Example {
     std::string title, description;
     ViewArguments arguments;
@@ -92,17 +111,20 @@ std::vector<ViewDemoEntry> write_view_demo(const std::filesystem::path& dir) {
     a.color = "jacobian";
     examples.push_back({"Where the map folds", "Joy-Duchaineau Fig. 11's twisted loft: surfaces w = const coloured by the Jacobian, red and blue on the two sides of the fold", a});
   }
-  std::vector<ViewDemoEntry> entries;
   for (const auto& e : examples) {
+    const std::string name = e.arguments.image.substr(0, e.arguments.image.size() - 4);
+    if (!demo.wants(name)) continue;
     ViewArguments run = e.arguments;
     run.model = (dir / run.model).string();
     run.image = (dir / run.image).string();
-    std::ostringstream log;
-    run_view(run, log);
-    entries.push_back({e.title, e.description, e.arguments.image, view_command_line(e.arguments)});
-    std::cout << e.arguments.image.substr(0, e.arguments.image.size() - 4) << ": " << e.description << "\n  " << run.image << "\n";
+    {
+      const ProgressPhase phase(demo.progress(), name);
+      std::ostringstream log;
+      run_view(run, log);
+    }
+    demo.gallery().add({e.title, e.description, {e.arguments.image}, view_command_line(e.arguments)});
+    std::cout << name << ": " << e.description << "\n  " << run.image << "\n";
   }
-  return entries;
 }
 
 }  // namespace volspline::cli

@@ -1,20 +1,14 @@
 #pragma once
-#include <filesystem>
-#include <string>
-#include <vector>
 
 namespace volspline::cli {
 
-/// One picture of the inside of a solid made by `demo`, with the command (run in the demo
-/// folder) that reproduces it.
-struct ViewDemoEntry {
-  std::string title, description, picture, command;
-};
+class DemoRun;
 
-/// Writes Lasser 1994 §IV's ways of looking inside a solid (Figs. 8-13, paddlewheels, colouring
-/// by the Jacobian and by a material attribute) into `dir`, where the models they view already
-/// are (bent-tricubic.json, twisted-loft.json, half-torus.json written by demo) or are written
-/// here (torus-temperature.json).
-std::vector<ViewDemoEntry> write_view_demo(const std::filesystem::path& dir);
+/// Writes Lasser 1994 §IV's ways of looking inside a solid (Figs. 8-13, a paddlewheel, colouring
+/// by the Jacobian and by a material attribute) as `view-*.png`, each a `volspline view` command
+/// run exactly as the gallery prints it (inside the demo folder). The models viewed are those
+/// the demo writes (bent-tricubic.json, half-torus.json, twisted-loft.json; written here too
+/// when absent, for `demo --only`) and torus-temperature.json, written here.
+void write_view_demo(DemoRun& demo);
 
 }  // namespace volspline::cli

@@ -71,9 +71,8 @@ std::vector<std::vector<double>> evaluate_rows(const TensorSpline<D>& s, const E
 
 void add_eval_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("eval", "Evaluate an object at parameter points or on a regular grid; prints one line per point, x y z [then xu yu zu xv yv zv xw yw zw]");
-  auto model_path = std::make_shared<std::string>();
   auto r = std::make_shared<EvalRequest>();
-  cmd->add_option("MODEL", *model_path, "model file")->required();
+  const auto input = add_model_input(cmd);
   cmd->add_option("--at", r->at, "a parameter point U,V,W (as many numbers as the object has parameters); repeatable")->take_all();
   cmd->add_option("--grid", r->grid, "NU,NV,NW samples per direction, endpoints included, u fastest");
   cmd->add_option("--object", r->object, "index of the object to evaluate (default 0)");
@@ -81,13 +80,13 @@ void add_eval_command(CLI::App& app) {
   cmd->add_flag("--json", r->json, "print JSON: {\"points\": [[x,y,z],...], \"derivatives\": [[xu,...],...]}");
   cmd->callback([=] {
     if (r->at.empty() && r->grid.empty()) throw InvalidInput("give at least one --at U,V,W or a --grid NU,NV,NW", "eval");
-    const Model model = read_model(*model_path);
+    const Model model = input->read();
     if (r->object >= model.objects.size())
       throw InvalidInput("object " + std::to_string(r->object) + " does not exist; the model has " +
                              std::to_string(model.objects.size()) + " object(s)",
                          "--object");
     const auto& object = model.objects[r->object];
-    r->location = *model_path + ": objects[" + std::to_string(r->object) + "]";
+    r->location = input->path + ": objects[" + std::to_string(r->object) + "]";
     const int k = std::visit([](const auto& s) { return s.dimension(); }, object.spline);
     const auto rows = std::visit([&](const auto& s) { return evaluate_rows(s, *r); }, object.spline);
     if (r->json) {

@@ -5,7 +5,6 @@
 #include "commands.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
-#include "volspline/io/model_file.h"
 #include "volspline/mesh/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
 #include "volspline/mesh/mesh_writer.h"
@@ -16,7 +15,6 @@ namespace volspline::cli {
 
 void add_faces_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("faces", "Tessellate the six boundary faces of every volume (parts 0..5) into one welded mesh");
-  auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto png = std::make_shared<std::string>();
   auto resolution = std::make_shared<int>(24);
@@ -24,7 +22,8 @@ void add_faces_command(CLI::App& app) {
   auto edges = std::make_shared<bool>(false);
   auto transparent = std::make_shared<bool>(false);
   auto size = std::make_shared<std::string>("800,600");
-  cmd->add_option("MODEL", *in, "model file")->required();
+  const auto input = add_model_input(cmd);
+  const auto in = std::shared_ptr<std::string>(input, &input->path);
   cmd->add_option("-o,--output", *out, "mesh file: .ply (binary; x y z u v w, face part), .obj or .stl")->required();
   cmd->add_option("--png", *png, "also render a shaded picture of the faces");
   cmd->add_option("--resolution", *resolution, "segments per parameter direction, plus every knot (default 24)")->check(CLI::Range(1, 1024));
@@ -38,7 +37,7 @@ void add_faces_command(CLI::App& app) {
       throw InvalidInput("expected a file name ending in .png, got '" + *png + "'", "--png");
     const auto wh = parse_integers(*size, 2, 16, "--size");
     if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + *size + "'", "--size");
-    const Model model = read_model(*in);
+    const Model model = input->read();
     TriangleMesh mesh;
     int volumes = 0;
     for (std::size_t i = 0; i < model.objects.size(); ++i) {

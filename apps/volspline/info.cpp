@@ -84,14 +84,14 @@ void print_mass(const nlohmann::json& j) {
 
 void add_info_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Describe every object of a model: type, degrees, control points, knot spans, domain, rational, bounding box");
-  auto model_path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("MODEL", *model_path, "model file (JSON, docs/model-format.md)")->required();
+  const auto input = add_model_input(cmd);
+  const auto model_path = std::shared_ptr<std::string>(input, &input->path);
   cmd->add_flag("--json", *json, "print JSON instead of text");
   auto mass = std::make_shared<bool>(false);
   cmd->add_flag("--mass", *mass, "also volume, centroid and inertia tensor (about the centroid, unit density) of every volume");
   cmd->callback([=] {
-    const Model model = read_model(*model_path);
+    const Model model = input->read();
     nlohmann::json out;
     out["file"] = *model_path;
     out["objects"] = nlohmann::json::array();

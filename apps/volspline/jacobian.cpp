@@ -6,10 +6,11 @@
 
 #include "cli_support.h"
 #include "commands.h"
+#include "progress_bar.h"
 #include "volspline/analysis/jacobian_validity.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
-#include "volspline/io/model_file.h"
+#include "volspline/io/model_formats.h"
 
 namespace volspline::cli {
 
@@ -29,13 +30,13 @@ void add_jacobian_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("jacobian",
                                  "Certify the sign of the Jacobian determinant of every volume: valid (orientation + or -), "
                                  "invalid (with a witness point) or undecided within the budget");
-  auto in = std::make_shared<std::string>();
   auto tol = std::make_shared<double>(1e-12);
   auto max_cells = std::make_shared<std::int64_t>(200000);
   auto bounds = std::make_shared<std::string>("bezier");
   auto json = std::make_shared<bool>(false);
   auto fail = std::make_shared<bool>(false);
-  cmd->add_option("MODEL", *in, "model file")->required();
+  const auto input = add_model_input(cmd);
+  const auto in = std::shared_ptr<std::string>(input, &input->path);
   cmd->add_option("--tol", *tol, "cells whose bound is narrower than TOL x max|J| are not split further (default 1e-12)");
   cmd->add_option("--max-cells", *max_cells, "budget of cells examined per volume (default 200000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
   cmd->add_option("--bounds", *bounds, "bezier (certified Bernstein coefficients, default) or cone (Joy–Duchaineau §5)");
@@ -47,7 +48,13 @@ void add_jacobian_command(CLI::App& app) {
     options.tolerance = *tol;
     options.max_cells = *max_cells;
     if (!(*tol >= 0) || !std::isfinite(*tol)) throw InvalidInput("expected a finite number >= 0", "--tol");
-    const Model model = read_model(*in);
+    options.progress = command_progress();
+    const Model model = [&] {
+      const ProgressPhase phase(options.progress, "reading");
+      return input->read();
+    }();
+    int volume_count = 0;
+    for (const auto& object : model.objects) volume_count += std::holds_alternative<BSplineVolume>(object.spline);
     nlohmann::json out = {{"objects", nlohmann::json::array()}};
     bool any_invalid = false;
     int volumes = 0;
@@ -55,6 +62,7 @@ void add_jacobian_command(CLI::App& app) {
       const auto* v = std::get_if<BSplineVolume>(&model.objects[i].spline);
       if (!v) continue;
       ++volumes;
+      if (volume_count > 1) reporter().set_label("object " + std::to_string(i));
       JacobianValidity r;
       try {
         r = check_jacobian(*v, options);
@@ -89,6 +97,7 @@ void add_jacobian_command(CLI::App& app) {
         std::cout << "  " << r.cells << " cells, " << std::setprecision(3) << r.seconds * 1e3 << " ms\n";
       }
     }
+    reporter().set_label("");
     if (volumes == 0) throw InvalidInput("the model has no volume objects (bspline_volume or bezier_volume)", *in);
     if (*json) std::cout << out.dump(2) << "\n";
     if (*fail && any_invalid) throw ExitCode(3);

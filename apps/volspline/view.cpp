@@ -10,9 +10,11 @@
 
 #include "cli_support.h"
 #include "commands.h"
+#include "progress_bar.h"
 #include "view_command.h"
 #include "volspline/analysis/scalar_fields.h"
 #include "volspline/core/error.h"
+#include "volspline/core/progress.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 #include "volspline/io/model_formats.h"
@@ -80,7 +82,7 @@ SolidViewRequest request_from(const ViewArguments& a) {
 
 }  // namespace
 
-void run_view(const ViewArguments& a, std::ostream& out) {
+void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
   if (std::filesystem::path(a.image).extension() != ".png")
     throw InvalidInput("expected a picture file name ending in .png, got '" + a.image + "'", "--output");
   const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
@@ -110,6 +112,7 @@ void run_view(const ViewArguments& a, std::ostream& out) {
   const SolidViewRequest request = request_from(a);
   const std::optional<ScalarField> field = a.color.empty() ? std::nullopt : std::optional(scalar_field_named(a.color));
 
+  std::optional<ProgressPhase> phase(std::in_place, progress, "reading");
   const Model model = read_model_file(a.model);
   std::vector<std::size_t> volumes;
   for (std::size_t i = 0; i < model.objects.size(); ++i)
@@ -129,6 +132,7 @@ void run_view(const ViewArguments& a, std::ostream& out) {
   }
   const std::vector<Plane> planes = requested_planes(request, lo, hi);
 
+  phase.emplace(progress, "surfaces", static_cast<double>(volumes.size()), "volumes");
   TriangleMesh mesh;
   std::vector<double> scalars;
   for (const std::size_t i : volumes) {
@@ -152,6 +156,7 @@ void run_view(const ViewArguments& a, std::ostream& out) {
         scalars.insert(scalars.end(), values.begin(), values.end());
       }
       mesh.append(part);
+      phase->advance();
     } catch (const InvalidInput& e) {
       throw e.located(a.model + ": objects[" + std::to_string(i) + "]");
     }
@@ -173,7 +178,9 @@ void run_view(const ViewArguments& a, std::ostream& out) {
     for (const double s : scalars) mesh_options.vertex_colors.push_back(colormap_color(options.colormap, (s - low) / (high - low)));
   }
   if (mesh.triangles.empty()) std::cerr << "volspline: note: nothing to show: the probes miss the solid\n";
+  phase.emplace(progress, "rendering");
   const Image image = render_mesh(mesh, options);
+  phase.emplace(progress, "writing");
   // Both files are prepared before either is committed, so a failure leaves neither behind.
   const std::string picture = png_bytes(image);
   if (!a.mesh.empty()) {
@@ -245,7 +252,7 @@ void add_view_command(CLI::App& app) {
   cmd->add_flag("--edges", a->edges, "draw the triangle edges");
   cmd->add_flag("--transparent", a->transparent, "transparent picture background");
   cmd->add_flag("--ascii", a->ascii, "write the PLY mesh as text");
-  cmd->callback([a] { run_view(*a, std::cout); });
+  cmd->callback([a] { run_view(*a, std::cout, command_progress()); });
 }
 
 }  // namespace volspline::cli

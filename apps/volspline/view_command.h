@@ -5,6 +5,10 @@
 #include <string>
 #include <vector>
 
+namespace volspline {
+class Progress;
+}
+
 namespace volspline::cli {
 
 struct ViewArguments {
@@ -14,9 +18,10 @@ struct ViewArguments {
   bool faces = false, cutaway = false, edges = false, transparent = false, ascii = false;
 };
 
-/// Does what `volspline view` does with these arguments, reporting to `out`.
+/// Does what `volspline view` does with these arguments, reporting to `out` and, unless null,
+/// its phases (reading, surfaces, rendering, writing) to `progress`.
 /// \throw InvalidInput / IoError as the command reports them.
-void run_view(const ViewArguments& arguments, std::ostream& out);
+void run_view(const ViewArguments& arguments, std::ostream& out, Progress* progress = nullptr);
 
 /// The `volspline view ...` command line for these arguments (paths as given).
 std::string view_command_line(const ViewArguments& arguments);

@@ -68,6 +68,8 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
   }
   if (options.max_cells < 1) throw InvalidInput("the cell budget must be at least 1");
   const auto start = std::chrono::steady_clock::now();
+  // The number of cells needed is not known beforehand: the phase counts them.
+  const ProgressPhase phase(options.progress, "certification", 0, "cells");
   JacobianSubdivision subdivision(volume, options.bounds);
   JacobianValidity result;
   result.lower = std::numeric_limits<double>::infinity();
@@ -101,6 +103,7 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
   const auto collapse = collapsed_corner(volume);
   for (auto& cell : subdivision.roots()) {
     ++result.cells;
+    phase.advance();
     record(cell);
     double size = 1;
     const Eigen::Vector3d a = subdivision.corner_parameter(cell, 0), b = subdivision.corner_parameter(cell, 7);
@@ -123,6 +126,7 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
       continue;
     }
     auto [a, b] = subdivision.split(cell, direction);
+    phase.advance(2);
     for (JacobianCell* child : {&a, &b}) {
       ++result.cells;
       record(*child);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <queue>
 #include <string>
 #include <unordered_map>
@@ -11,6 +12,7 @@
 
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
+#include "volspline/core/progress.h"
 #include "volspline/mesh/face_tessellation.h"
 #include "volspline/mesh/marching_tetrahedra.h"
 
@@ -302,13 +304,18 @@ void finish_surface(const BSplineVolume& volume, MarchingTetrahedra& mt, const B
   auto t = Clock::now();
   const auto& verts = mt.vertices();
   if (options.snap) {
+    const ProgressPhase phase(options.progress, "snap", static_cast<double>(verts.size()));
     // A vertex may move at most 5% of the largest domain extent: Newton steps that go further
     // have left the basin of the zero set the vertex came from.
     double extent = 0;
     for (int d = 0; d < 3; ++d) extent = std::max(extent, volume.domain_max(d) - volume.domain_min(d));
-    for (std::size_t i = 0; i < verts.size(); ++i) mt.set_vertex(static_cast<int>(i), snap_to_zero(volume, verts[i], 0.05 * extent));
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+      mt.set_vertex(static_cast<int>(i), snap_to_zero(volume, verts[i], 0.05 * extent));
+      phase.advance();
+    }
   }
   out.stats.seconds_snap = options.snap ? since(t) : 0;
+  const ProgressPhase phase(options.progress, "mapping");
   t = Clock::now();
   std::vector<std::array<double, 3>> params(verts.size());
   for (std::size_t i = 0; i < verts.size(); ++i) params[i] = {verts[i][0], verts[i][1], verts[i][2]};
@@ -336,6 +343,10 @@ void finish_surface(const BSplineVolume& volume, MarchingTetrahedra& mt, const B
 SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryOptions& options) {
   SolidBoundary out;
   auto t = Clock::now();
+  // How many cells the subdivision will examine is not known beforehand (the share of the
+  // domain finished says little: the cells along the zero set take nearly all the time), so it
+  // reports the count.
+  std::optional<ProgressPhase> phase(std::in_place, options.progress, "subdivision", 0, "cells");
   const JacobianSubdivision sub(volume, options.bounds);
   std::vector<Leaf> leaves;
   auto leaf_of = [](const JacobianCell& c, bool kept) {
@@ -347,6 +358,7 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
   std::priority_queue<JacobianCell, std::vector<JacobianCell>, decltype(wider)> queue(wider);
   for (auto& cell : sub.roots()) {
     ++out.stats.cells_examined;
+    phase->advance();
     if (cell.excludes_zero()) {
       leaves.push_back(leaf_of(cell, false));
     } else {
@@ -374,6 +386,7 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
       continue;
     }
     auto [a, b] = sub.split(cell, direction);
+    phase->advance(2);
     for (JacobianCell* child : {&a, &b}) {
       ++out.stats.cells_examined;
       if (child->excludes_zero()) {
@@ -385,10 +398,12 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
   }
   for (const Leaf& l : leaves) out.stats.cells_kept += l.kept ? 1 : 0;
   out.stats.seconds_subdivision = since(t);
+  phase.reset();
 
   t = Clock::now();
   MarchingTetrahedra mt;
   if (out.stats.cells_kept > 0) {
+    phase.emplace(options.progress, "tetrahedra");
     const ConformingTetrahedra tets(leaves);
     // Ids and J values of every lattice point used, evaluated once each.
     std::unordered_map<Lattice, int, LatticeHash> ids;
@@ -415,6 +430,7 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
       value[i] = Eigen::Vector3d(di[3], di[4], di[5]).dot(Eigen::Vector3d(di[6], di[7], di[8]).cross(Eigen::Vector3d(di[9], di[10], di[11])));
     }
     out.stats.seconds_tetrahedra = since(t);
+    phase.emplace(options.progress, "marching", static_cast<double>(tetrahedra.size()));
     t = Clock::now();
     for (const auto& tet : tetrahedra) {
       std::array<MarchingTetrahedra::Sample, 4> s;
@@ -423,8 +439,10 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
         s[k] = {tet[k], domain[i], value[i]};
       }
       mt.add_tetrahedron(s);
+      phase->advance();
     }
     out.stats.seconds_isosurface = since(t);
+    phase.reset();
   }
   finish_surface(volume, mt, options, out);
   return out;
@@ -433,6 +451,7 @@ SolidBoundary adaptive_zero_surface(const BSplineVolume& volume, const BoundaryO
 SolidBoundary uniform_zero_surface(const BSplineVolume& volume, const BoundaryOptions& options) {
   SolidBoundary out;
   auto t = Clock::now();
+  std::optional<ProgressPhase> phase(std::in_place, options.progress, "sampling");
   const int n = options.resolution;
   std::array<std::vector<double>, 3> samples;
   for (int d = 0; d < 3; ++d) {
@@ -447,6 +466,7 @@ SolidBoundary uniform_zero_surface(const BSplineVolume& volume, const BoundaryOp
   }
   out.stats.cells_examined = static_cast<std::int64_t>(n) * n * n;
   out.stats.seconds_subdivision = since(t);
+  phase.emplace(options.progress, "marching", n);
   t = Clock::now();
   MarchingTetrahedra mt;
   // Six tetrahedra around the main diagonal of each cube (Kuhn): neighbouring cubes agree on
@@ -474,8 +494,10 @@ SolidBoundary uniform_zero_surface(const BSplineVolume& volume, const BoundaryOp
         }
       }
     }
+    phase->advance();
   }
   out.stats.seconds_isosurface = since(t);
+  phase.reset();
   finish_surface(volume, mt, options, out);
   return out;
 }
@@ -498,6 +520,7 @@ SolidBoundary solid_boundary(const BSplineVolume& volume, const BoundaryOptions&
   const auto start = Clock::now();
   SolidBoundary out = jacobian_zero_surface(volume, options);
   auto t = Clock::now();
+  const ProgressPhase phase(options.progress, "faces");
   FaceTessellationOptions face_options;
   face_options.resolution = options.face_resolution;
   TriangleMesh faces = tessellate_faces(volume, face_options);

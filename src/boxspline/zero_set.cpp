@@ -2,10 +2,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "volspline/boxspline/lattice_isosurface.h"
 #include "volspline/core/error.h"
+#include "volspline/core/progress.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
@@ -38,6 +40,7 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
   const auto start = std::chrono::steady_clock::now();
   if (options.levels < 0 || options.levels > 8)
     throw InvalidInput("expected between 0 and 8 refinement levels, got " + std::to_string(options.levels), "--levels");
+  std::optional<ProgressPhase> phase(std::in_place, options.progress, "refinement");
   const LatticeField fine = refine(coarse, options.levels);
   const double g = fine.spacing;
   const double slack = 1e-9 * g;
@@ -63,6 +66,7 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
   TetrahedralGrid grid(fine.origin + g * Eigen::Vector3d(m0[0], m0[1], m0[2]), g, cells,
                        control ? TetrahedralGrid::Layout::CornersAveraged : TetrahedralGrid::Layout::AllNodes);
   const auto nodes = grid.nodes();
+  phase.emplace(options.progress, "values", nodes[2]);
   const auto exterior_value = [&](const Eigen::Vector3d& x) {
     return root != nullptr ? scene_value(*root, x) : std::numeric_limits<double>::quiet_NaN();
   };
@@ -78,12 +82,14 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
           const int i = m0[0] + a / 2, j = m0[1] + b / 2, k = m0[2] + c / 2;
           grid.corner(a / 2, b / 2, c / 2) =
               box.contains(x, slack) && lattice_index_valid(i, j, k) ? fine.at(i, j, k) : exterior_value(x);
+          if (a == 0 && b == 0) phase->advance(2);
         }
   } else {
     const auto& stencils = node_stencils();
     for (int c = 0; c < nodes[2]; ++c)
       for (int b = 0; b < nodes[1]; ++b)
         for (int a = 0; a < nodes[0]; ++a) {
+          if (a == 0 && b == 0) phase->advance();
           const int bits = (a & 1) + 2 * (b & 1) + 4 * (c & 1);
           if ((a & 1) + (b & 1) + (c & 1) == 1) continue;
           const Eigen::Vector3d x = grid.node_position(a, b, c);
@@ -116,7 +122,9 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
   }
 
   ZeroSet out;
+  phase.emplace(options.progress, "marching");
   out.mesh = march_tetrahedra(grid);
+  phase.reset();
   out.stats.grid_spacing = g;
 
   // f at a vertex: the spline in the box, the primitives outside.
@@ -125,7 +133,9 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
     return root != nullptr ? scene_value(*root, x, gradient) : coarse.evaluate(x, gradient);
   };
   if (options.method == ZeroSetMethod::Exact && options.project) {
+    phase.emplace(options.progress, "projection", static_cast<double>(out.mesh.positions.size()));
     for (Eigen::Vector3d& x : out.mesh.positions) {
+      phase->advance();
       const Eigen::Vector3d start_point = x;
       Eigen::Vector3d y = x;
       for (int step = 0; step < 8; ++step) {
@@ -142,6 +152,7 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
       x = y;
     }
     out.mesh.parameters = out.mesh.positions;
+    phase.reset();
   }
 
   out.stats.vertices = out.mesh.num_vertices();
@@ -150,6 +161,7 @@ ZeroSet build(const LatticeField& coarse, const SceneNode* root, const Region& b
     out.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
   }
+  phase.emplace(options.progress, "statistics");
   const EdgeStatistics edges = edge_statistics(out.mesh);
   out.stats.boundary_edges = edges.boundary_edges;
   out.stats.nonmanifold_edges = edges.nonmanifold_edges;

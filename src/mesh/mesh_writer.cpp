@@ -18,7 +18,7 @@
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/mesh/mesh_checks.h"
-#include "volspline/render/mesh_renderer.h"
+#include "volspline/mesh/part_colors.h"
 
 namespace volspline {
 

@@ -6,6 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -13,6 +16,7 @@
 #include "support/cli_runner.h"
 #include "support/temporary_directory.h"
 #include "volspline/construct/example_solids.h"
+#include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 
 namespace volspline {
@@ -244,10 +248,23 @@ TEST_F(Cli, OutsideTheDomainNamesFileObjectAndPoint) {
   EXPECT_EQ(run("eval " + path + " --at +0.5,0.5,0.25", dir()).code, 0);
 }
 
-TEST_F(Cli, DemoWritesEveryExample) {
+// The text of an HTML page's element content back to plain text (the escapes Gallery writes).
+std::string html_unescape(std::string text) {
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&#39;", "'"}, {"&amp;", "&"}}) {
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+      text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+// One run of the demo (slow under sanitizers) for all its checks: every example's files, then the
+// gallery page.
+TEST_F(Cli, DemoWritesEveryExampleAndItsGallery) {
   const auto out = dir() / "demo";
-  const auto r = run("demo --out " + out.string(), dir());
-  ASSERT_EQ(r.code, 0) << r.err;
+  const auto demo = run("demo --out " + out.string(), dir());
+  ASSERT_EQ(demo.code, 0) << demo.err;
+
   for (const char* name : {"bent-tricubic", "twisted", "half-cylinder-shell", "ball", "torus-segment", "hollow-cylinder",
                            "frustum", "half-torus", "hyperboloid", "half-cylinder-sweep", "swept-patch", "twisted-loft",
                            "curved-loft"})
@@ -258,6 +275,57 @@ TEST_F(Cli, DemoWritesEveryExample) {
   const Model m = read_model(out / "half-cylinder-shell.json");
   const auto& v = std::get<BSplineVolume>(m.objects[0].spline);
   EXPECT_TRUE(std::count(v.weights().begin(), v.weights().end(), 0.0) > 0);
+
+  const std::string html = read_file(out / "index.html");
+  std::set<std::string> linked;
+  const std::regex image("<img src=\"([^\"]+)\""), source("src=\"([^\"]+)\"");
+  for (std::sregex_iterator it(html.begin(), html.end(), image), end; it != end; ++it)
+    linked.insert((*it)[1].str());
+  std::set<std::string> pictures;
+  for (const auto& e : std::filesystem::directory_iterator(out))
+    if (e.path().extension() == ".png") pictures.insert(e.path().filename().string());
+  EXPECT_EQ(linked, pictures);  // every picture shown, every link to a picture that exists
+  EXPECT_GE(pictures.size(), 30u);
+
+  // Each section's title, pictures and command.
+  std::map<std::string, std::pair<std::vector<std::string>, std::string>> entries;
+  const std::regex section("<h2>([^<]*)</h2>[\\s\\S]*?<div>([\\s\\S]*?)</div>\n<pre><code>([^<]*)</code>");
+  for (std::sregex_iterator it(html.begin(), html.end(), section), end; it != end; ++it) {
+    std::vector<std::string> srcs;
+    const std::string div = (*it)[2].str();
+    for (std::sregex_iterator p(div.begin(), div.end(), source); p != end; ++p) srcs.push_back((*p)[1].str());
+    entries[(*it)[1].str()] = {srcs, html_unescape((*it)[3].str())};
+  }
+  EXPECT_EQ(entries.size(), pictures.size());
+  for (const auto& [title, entry] : entries) EXPECT_EQ(entry.second.rfind("volspline ", 0), 0u) << title << ": " << entry.second;
+
+  // A few commands run in an empty folder write the same pictures, byte for byte: `make` + `faces`,
+  // `make` + `boundary`, and `demo --only` for an example built in code.
+  const auto again = dir() / "again";
+  std::filesystem::create_directories(again);
+  for (const char* title : {"ball", "swept-patch-boundary", "ffd-bent-bar"}) {
+    ASSERT_TRUE(entries.contains(title)) << title;
+    const auto& [srcs, command] = entries[title];
+    const std::string line = std::regex_replace(command, std::regex("(^|&& )volspline "), std::string("$1") + VOLSPLINE_CLI + " ");
+    ASSERT_EQ(std::system(("cd " + again.string() + " && " + line + " >/dev/null").c_str()), 0) << line;
+    for (const auto& picture : srcs) EXPECT_EQ(read_file(again / picture), read_file(out / picture)) << picture;
+  }
+  // A `view` command, run in the demo folder where its models are, redraws its picture exactly.
+  {
+    ASSERT_TRUE(entries.contains("Core section"));
+    const auto& [srcs, command] = entries["Core section"];
+    ASSERT_EQ(srcs.size(), 1u);
+    const std::string before = read_file(out / srcs[0]);
+    std::filesystem::remove(out / srcs[0]);
+    const std::string line = std::regex_replace(command, std::regex("^volspline "), std::string(VOLSPLINE_CLI) + " ");
+    ASSERT_EQ(std::system(("cd " + out.string() + " && " + line + " >/dev/null").c_str()), 0) << line;
+    EXPECT_EQ(read_file(out / srcs[0]), before);
+  }
+  EXPECT_FALSE(std::filesystem::exists(again / "index.html"));  // --only leaves the gallery alone
+  const auto r = run("demo --only no-such-example --out " + again.string(), dir());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--only"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("twisted-loft-boundary"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "volspline/analysis/jacobian_cells.h"
+#include "volspline/core/progress.h"
 
 namespace volspline {
 
@@ -27,6 +28,8 @@ struct JacobianValidityOptions {
   double tolerance = 1e-12;
   /// Budget of cells examined (bounded), roots included.
   std::int64_t max_cells = 200000;
+  /// Receives the phase "certification" (counts the cells examined). Null: nobody listens.
+  Progress* progress = nullptr;
 };
 
 struct JacobianValidity {

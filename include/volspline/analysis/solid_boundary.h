@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "volspline/analysis/jacobian_cells.h"
+#include "volspline/core/progress.h"
 #include "volspline/mesh/triangle_mesh.h"
 
 namespace volspline {
@@ -45,6 +46,10 @@ struct BoundaryOptions {
   bool snap = false;
   /// Samples per direction of the face patches (as tessellate_faces).
   int face_resolution = 24;
+  /// Receives the phases "subdivision" (adaptive; counts cells), "sampling" (uniform),
+  /// "tetrahedra", "marching", "snap", "mapping" and, for solid_boundary, "faces". Null: nobody
+  /// listens.
+  Progress* progress = nullptr;
 };
 
 struct BoundaryStats {

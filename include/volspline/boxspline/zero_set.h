@@ -16,6 +16,7 @@
 
 #include "volspline/boxspline/implicit_scene.h"
 #include "volspline/boxspline/lattice_field.h"
+#include "volspline/core/progress.h"
 #include "volspline/mesh/triangle_mesh.h"
 
 namespace volspline {
@@ -32,6 +33,9 @@ struct ZeroSetOptions {
   /// Fill ZeroSetStats beyond counts and seconds: evaluates the spline at every vertex and checks
   /// the edges (costs more than the meshing itself; benchmarks turn it off).
   bool statistics = true;
+  /// Receives the phases "refinement", "values", "marching", "projection" and "statistics".
+  /// Null: nobody listens.
+  Progress* progress = nullptr;
 };
 
 inline constexpr int kSplineSurfacePart = 6;

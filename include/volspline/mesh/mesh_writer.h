@@ -53,7 +53,7 @@ std::string stl_bytes(const TriangleMesh& mesh, bool ascii = false);
 
 /// Binary glTF 2.0 (.glb, written with tinygltf): one mesh of indexed triangles with POSITION,
 /// NORMAL and COLOR_0 (single precision). Every triangle's corners carry the colour of its part
-/// (part_color of render/mesh_renderer.h, converted from sRGB to glTF's linear colour space), so
+/// (part_color of mesh/part_colors.h, converted from sRGB to glTF's linear colour space), so
 /// a vertex shared by two parts is written once per part; normals are area-weighted averages
 /// over the triangles of the same part around a vertex, so the seams between parts stay sharp.
 /// Parameters are not written. With `vertex_colors` (sRGB, one per vertex) the corners carry

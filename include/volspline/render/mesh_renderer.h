@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "volspline/mesh/part_colors.h"  // part_color, used by ColorMode::ByPart
 #include "volspline/mesh/triangle_mesh.h"
 #include "volspline/render/colormap.h"
 #include "volspline/render/image.h"
@@ -71,12 +72,6 @@ struct RenderOptions {
 /// else the extreme values at vertices of triangles; a range of zero width is widened so that
 /// the map stays defined. Exposed so that callers (colours in glTF files) agree with pictures.
 std::pair<double, double> scalar_range(const TriangleMesh& mesh, const RenderOptions& options);
-
-/// The sRGB colour, components in [0, 1], used for a mesh part (core/conventions.h): blue for the
-/// u faces, green for v, purple for w (darker at min, lighter at max), orange-red for the
-/// Jacobian-zero surface, the matching mid tones for isoparametric surfaces u, v, w = const
-/// (parts 7..9), sand for planar slices (10), grey for anything else.
-Eigen::Vector3d part_color(int part);
 
 /// Renders `mesh` as seen through a perspective camera fitted to it. A mesh with no visible
 /// triangles gives a picture of the background alone.
