@@ -35,8 +35,9 @@ std::array<int, 2> text_size(const std::string& text, int scale) {
 void draw_text(Image& image, int x, int y, const std::string& text, int scale, const std::array<std::uint8_t, 3>& rgb) {
   std::string s = printable(text);
   if (s.empty()) return;
-  // At most 270 bytes of quads per character, by the library's own estimate.
-  std::vector<char> buffer(300 * (s.size() + 1));
+  // 64 bytes per quad and up to about a dozen quads for the busiest glyphs ('8', '@'): the
+  // library's estimate of 270 bytes per character is an average and cut off a final '8'.
+  std::vector<char> buffer(1024 * (s.size() + 1));
   unsigned char color[4] = {rgb[0], rgb[1], rgb[2], 255};
   const int quads = stb_easy_font_print(0, 0, s.data(), color, buffer.data(), static_cast<int>(buffer.size()));
   struct Vertex {

@@ -54,6 +54,19 @@ TEST(Text, DrawsInkOnlyInsideItsBox) {
   draw_text(image, 190, 50, "clipped at the corner", 3, {0, 0, 0});  // must not write outside
 }
 
+TEST(Text, EveryGlyphOfALongLabelIsDrawnWhole) {
+  // Glyphs do not overlap, so a string of n copies of the busiest digit has n times its ink
+  // (a too small quad buffer once cut off the last '8' of "68").
+  auto ink = [](const std::string& text) {
+    Image image(400, 40, 255, 255, 255, 255);
+    draw_text(image, 2, 2, text, 2, {0, 0, 0});
+    int count = 0;
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4) count += image.rgba[i] == 0;
+    return count;
+  };
+  for (const std::string glyph : {"8", "@", "0", "-"}) EXPECT_EQ(ink(std::string(12, glyph[0])), 12 * ink(glyph)) << glyph;
+}
+
 TEST(ColorBar, StripShowsTheMapFromMaxAtTheTopToMinAtTheBottom) {
   Image image(600, 400, 250, 250, 250, 255);
   draw_color_bar(image, {Colormap::Sequential, -2.0, 5.0, "density"});
