@@ -33,16 +33,30 @@ void MarchingTetrahedra::reserve(std::size_t vertices, std::size_t triangles) {
   triangles_.reserve(triangles);
 }
 
-void MarchingTetrahedra::add_tetrahedron(const std::array<Sample, 4>& t) {
+namespace {
+
+// The corners of a tetrahedron by sign (values >= 0 count as positive), in corner order.
+struct CornersBySign {
   std::array<int, 4> positive{}, negative{};
   int np = 0, nn = 0;
+};
+
+CornersBySign split_by_sign(const std::array<MarchingTetrahedra::Sample, 4>& t) {
+  CornersBySign c;
   for (int i = 0; i < 4; ++i) {
     if (t[static_cast<std::size_t>(i)].value >= 0) {
-      positive[static_cast<std::size_t>(np++)] = i;
+      c.positive[static_cast<std::size_t>(c.np++)] = i;
     } else {
-      negative[static_cast<std::size_t>(nn++)] = i;
+      c.negative[static_cast<std::size_t>(c.nn++)] = i;
     }
   }
+  return c;
+}
+
+}  // namespace
+
+void MarchingTetrahedra::add_tetrahedron(const std::array<Sample, 4>& t) {
+  const auto [positive, negative, np, nn] = split_by_sign(t);
   if (np == 0 || nn == 0) return;
   auto s = [&](int i) -> const Sample& { return t[static_cast<std::size_t>(i)]; };
   Eigen::Vector3d pos_centre = Eigen::Vector3d::Zero(), neg_centre = Eigen::Vector3d::Zero();
@@ -70,15 +84,7 @@ void MarchingTetrahedra::add_tetrahedron(const std::array<Sample, 4>& t) {
 }
 
 void MarchingTetrahedra::add_tetrahedron_oriented_by_corners(const std::array<Sample, 4>& t) {
-  std::array<int, 4> positive{}, negative{};
-  int np = 0, nn = 0;
-  for (int i = 0; i < 4; ++i) {
-    if (t[static_cast<std::size_t>(i)].value >= 0) {
-      positive[static_cast<std::size_t>(np++)] = i;
-    } else {
-      negative[static_cast<std::size_t>(nn++)] = i;
-    }
-  }
+  const auto [positive, negative, np, nn] = split_by_sign(t);
   if (np == 0 || nn == 0) return;
   auto s = [&](int i) -> const Sample& { return t[static_cast<std::size_t>(i)]; };
   const auto det = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) { return a.dot(b.cross(c)); };
