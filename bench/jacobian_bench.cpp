@@ -12,7 +12,7 @@
 #include <random>
 
 #include "volspline/analysis/jacobian_validity.h"
-#include "volspline/analysis/solid_boundary.h"
+#include "volspline/extract/solid_boundary.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/construct/paper_examples.h"
 #include "volspline/spline/bezier_extraction.h"

@@ -8,7 +8,7 @@
 #include "cli_support.h"
 #include "commands.h"
 #include "progress_bar.h"
-#include "volspline/analysis/solid_boundary.h"
+#include "volspline/extract/solid_boundary.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_formats.h"

@@ -18,7 +18,7 @@
 #include "volspline/deform/ffd_example.h"
 #include "volspline/deform/lattice.h"
 #include "volspline/io/model_file.h"
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_writer.h"
 #include "volspline/render/image.h"
 #include "volspline/render/mesh_renderer.h"

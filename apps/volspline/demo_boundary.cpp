@@ -7,7 +7,7 @@
 
 #include "commands.h"
 #include "demo_gallery.h"
-#include "volspline/analysis/solid_boundary.h"
+#include "volspline/extract/solid_boundary.h"
 #include "volspline/construct/paper_examples.h"
 #include "volspline/construct/primitives.h"
 #include "volspline/io/atomic_file.h"

@@ -5,7 +5,7 @@
 #include "commands.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
 #include "volspline/mesh/mesh_writer.h"
 #include "volspline/render/image.h"

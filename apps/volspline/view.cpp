@@ -19,7 +19,7 @@
 #include "volspline/io/model_file.h"
 #include "volspline/io/model_formats.h"
 #include "volspline/mesh/mesh_writer.h"
-#include "volspline/mesh/solid_views.h"
+#include "volspline/extract/solid_views.h"
 #include "volspline/render/color_bar.h"
 #include "volspline/render/colormap.h"
 #include "volspline/render/image.h"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "volspline/boxspline/quartic_tables.h"
+#include "quartic_tables.h"
 #include "volspline/boxspline/seven_direction_box_spline.h"
 #include "volspline/core/error.h"
 

@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "volspline/boxspline/quartic_tables.h"
+#include "quartic_tables.h"
 #include "volspline/boxspline/seven_direction_box_spline.h"
 #include "volspline/core/error.h"
 

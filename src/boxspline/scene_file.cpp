@@ -9,7 +9,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
-#include "volspline/io/model_file.h"
+#include "volspline/io/strict_json.h"
 
 namespace volspline {
 

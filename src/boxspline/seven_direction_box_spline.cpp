@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "volspline/boxspline/quartic_tables.h"
+#include "quartic_tables.h"
 
 namespace volspline {
 

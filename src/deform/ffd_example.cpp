@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "volspline/construct/primitives.h"
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 
 namespace volspline {
 

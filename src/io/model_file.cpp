@@ -13,6 +13,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/io/strict_json.h"
 #include "volspline/spline/attribute_spline.h"
 
 namespace volspline {
@@ -21,206 +22,8 @@ namespace {
 
 using nlohmann::json;
 
-/// Deepest nesting of arrays and objects accepted in a model file. A model itself needs 5
-/// levels (top, objects, object, knots, knot vector); the rest is room for metadata. The limit
-/// keeps recursive JSON operations (copy, dump, comparison) far from the stack's end.
-constexpr std::size_t kMaxDepth = 64;
-
-// ------------------------------------------------------------------------------------------
-// JSON paths and descriptions of values for messages.
-
-bool is_identifier(const std::string& key) {
-  if (key.empty()) return false;
-  const auto alpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
-  if (!alpha(key[0])) return false;
-  return std::all_of(key.begin(), key.end(), [&](char c) { return alpha(c) || (c >= '0' && c <= '9'); });
-}
-
-/// A JSON string literal for `text`, shortened to about `limit` bytes for messages.
-std::string json_quoted(const std::string& text, std::size_t limit = 40) {
-  std::string shown = text.size() > limit ? text.substr(0, limit) : text;
-  std::string literal = json(shown).dump(-1, ' ', false, json::error_handler_t::replace);
-  if (shown.size() < text.size()) literal.insert(literal.size() - 1, "...");
-  return literal;
-}
-
-std::string key_path(const std::string& parent, const std::string& key) {
-  if (!is_identifier(key)) return parent + "[" + json_quoted(key, 1000) + "]";
-  return parent.empty() ? key : parent + "." + key;
-}
-
-std::string index_path(const std::string& parent, std::size_t index) {
-  return parent + "[" + std::to_string(index) + "]";
-}
-
-std::string describe(const json& value) {
-  switch (value.type()) {
-    case json::value_t::null:
-      return "null";
-    case json::value_t::boolean:
-      return value.get<bool>() ? "true" : "false";
-    case json::value_t::number_integer:
-    case json::value_t::number_unsigned:
-    case json::value_t::number_float:
-      return value.dump();
-    case json::value_t::string:
-      return "the string " + json_quoted(value.get_ref<const std::string&>());
-    case json::value_t::array:
-      if (value.empty()) return "an empty array";
-      return value.size() == 1 ? "an array of 1 element" : "an array of " + std::to_string(value.size()) + " elements";
-    case json::value_t::object:
-      return value.empty() ? "an empty object" : "an object";
-    default:
-      return "a value of an unsupported kind";
-  }
-}
-
 [[noreturn]] void fail(const std::string& expected, const json& got, const std::string& path) {
-  throw InvalidInput("expected " + expected + ", got " + describe(got), path);
-}
-
-// ------------------------------------------------------------------------------------------
-// Parsing JSON text into a DOM: a SAX handler that rejects duplicate keys, limits the nesting
-// depth, reports numbers beyond the range of a double at their JSON path, and converts
-// syntax errors into "line L, column C" messages.
-
-class DomBuilder {
- public:
-  DomBuilder(std::string_view text, json& root) : text_(text), root_(root) {}
-
-  bool null() { return add(json(nullptr)); }
-  bool boolean(bool value) { return add(json(value)); }
-  bool number_integer(json::number_integer_t value) { return add(json(value)); }
-  bool number_unsigned(json::number_unsigned_t value) { return add(json(value)); }
-  bool number_float(json::number_float_t value, const json::string_t& /*text*/) { return add(json(value)); }
-  bool string(json::string_t& value) { return add(json(std::move(value))); }
-  bool binary(json::binary_t& value) { return add(json::binary(std::move(value))); }
-
-  bool start_object(std::size_t /*elements*/) { return open(json::object(), true); }
-  bool start_array(std::size_t /*elements*/) { return open(json::array(), false); }
-  bool end_object() { return close(); }
-  bool end_array() { return close(); }
-
-  bool key(json::string_t& key) {
-    Frame& top = frames_.back();
-    top.key = key;
-    if (top.value->contains(key)) {
-      throw InvalidInput("duplicate key " + json_quoted(key) + ": every key may appear only once in an object",
-                         current_path());
-    }
-    return true;
-  }
-
-  bool parse_error(std::size_t position, const std::string& last_token, const json::exception& error) {
-    if (error.id == 406) {
-      // nlohmann rejects numbers such as 1e999 that overflow a double: say where.
-      throw InvalidInput("expected a finite number, got " + last_token + " (beyond the range of a double)",
-                         current_path());
-    }
-    throw InvalidInput("invalid JSON: " + reason(error.what()), line_and_column(position));
-  }
-
- private:
-  struct Frame {
-    json* value;
-    bool object;
-    std::string key;
-  };
-
-  /// The JSON path of the value that is parsed next (or is being parsed).
-  std::string current_path() const {
-    std::string path;
-    for (std::size_t i = 0; i < frames_.size(); ++i) {
-      const Frame& f = frames_[i];
-      if (f.object) {
-        path = key_path(path, f.key);
-      } else {
-        // An enclosing array's current element is its last; the innermost one's is the next.
-        const std::size_t size = f.value->size();
-        path = index_path(path, i + 1 < frames_.size() ? size - 1 : size);
-      }
-    }
-    return path;
-  }
-
-  /// Where nlohmann stopped: `position` counts the bytes read, the offending one included.
-  std::string line_and_column(std::size_t position) const {
-    const std::size_t at = std::min(position > 0 ? position - 1 : 0, text_.size());
-    std::size_t line = 1;
-    std::size_t line_start = 0;
-    for (std::size_t i = 0; i < at; ++i) {
-      if (text_[i] == '\n') {
-        ++line;
-        line_start = i + 1;
-      }
-    }
-    return "line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1);
-  }
-
-  /// nlohmann's message without its "[json.exception...] parse error at line L, column C: ".
-  static std::string reason(const std::string& what) {
-    std::string text = what;
-    if (const auto bracket = text.find("] "); text.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) {
-      text = text.substr(bracket + 2);
-    }
-    if (text.rfind("parse error", 0) == 0) {
-      if (const auto colon = text.find(": "); colon != std::string::npos) text = text.substr(colon + 2);
-    }
-    return text;
-  }
-
-  bool add(json value) {
-    if (frames_.empty()) {
-      root_ = std::move(value);
-      return true;
-    }
-    Frame& top = frames_.back();
-    if (top.object) {
-      (*top.value)[top.key] = std::move(value);
-    } else {
-      top.value->push_back(std::move(value));
-    }
-    return true;
-  }
-
-  bool open(json container, bool object) {
-    if (frames_.size() >= kMaxDepth) {
-      throw InvalidInput("expected at most " + std::to_string(kMaxDepth) +
-                             " levels of nested arrays and objects, got more",
-                         current_path());
-    }
-    json* slot = nullptr;
-    if (frames_.empty()) {
-      root_ = std::move(container);
-      slot = &root_;
-    } else {
-      Frame& top = frames_.back();
-      if (top.object) {
-        slot = &((*top.value)[top.key] = std::move(container));
-      } else {
-        top.value->push_back(std::move(container));
-        slot = &top.value->back();
-      }
-    }
-    frames_.push_back(Frame{slot, object, {}});
-    return true;
-  }
-
-  bool close() {
-    frames_.pop_back();
-    return true;
-  }
-
-  std::string_view text_;
-  json& root_;
-  std::vector<Frame> frames_;
-};
-
-json parse_json(std::string_view text) {
-  json root;
-  DomBuilder builder(text, root);
-  json::sax_parse(text.data(), text.data() + text.size(), &builder);
-  return root;
+  throw InvalidInput("expected " + expected + ", got " + describe_json_value(got), path);
 }
 
 // ------------------------------------------------------------------------------------------
@@ -249,7 +52,7 @@ void check_keys(const json& object, const std::string& path, std::initializer_li
       for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
       throw InvalidInput("unknown key " + json_quoted(key) + ": expected one of " + list +
                              " (free-form data belongs under \"metadata\")",
-                         key_path(path, key));
+                         json_key_path(path, key));
     }
   }
 }
@@ -274,14 +77,14 @@ std::vector<double> numbers(const json& value, const std::string& path, const st
   if (!value.is_array()) fail(what, value, path);
   std::vector<double> out;
   out.reserve(value.size());
-  for (std::size_t i = 0; i < value.size(); ++i) out.push_back(number(value[i], index_path(path, i)));
+  for (std::size_t i = 0; i < value.size(); ++i) out.push_back(number(value[i], json_index_path(path, i)));
   return out;
 }
 
 json metadata(const json& object, const std::string& path) {
   const auto it = object.find("metadata");
   if (it == object.end()) return nullptr;
-  if (!it->is_object()) fail("a JSON object", *it, key_path(path, "metadata"));
+  if (!it->is_object()) fail("a JSON object", *it, json_key_path(path, "metadata"));
   return *it;
 }
 
@@ -298,7 +101,7 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
   const std::string type_name = type.name;
 
   // Degrees: integers >= 1, one per direction.
-  const std::string degree_path = key_path(path, "degree");
+  const std::string degree_path = json_key_path(path, "degree");
   const json& degree_json =
       required(object, "degree", path, "an array of " + std::to_string(D) + " integers for a " + type_name);
   const std::string degree_what = D == 1 ? "an array of 1 integer (the degree of a " + type_name + ")"
@@ -308,7 +111,7 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
   std::array<int, D> degrees{};
   for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
     const json& value = degree_json[d];
-    const std::string at = index_path(degree_path, d);
+    const std::string at = json_index_path(degree_path, d);
     if (!value.is_number_integer()) fail("an integer degree", value, at);
     // nlohmann stores nonnegative integer literals as unsigned, negative ones as signed.
     if (!value.is_number_unsigned() || value.get<std::uint64_t>() < 1) fail("a degree of at least 1", value, at);
@@ -322,7 +125,7 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
   // points show that the degrees are real (a degree of 10^9 must not allocate 2 * 10^9 knots).
   std::vector<KnotVector> knots;
   std::array<std::uint64_t, D> counts{};
-  const std::string knots_path = key_path(path, "knots");
+  const std::string knots_path = json_key_path(path, "knots");
   if (type.bezier) {
     for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) counts[d] = static_cast<std::uint64_t>(degrees[d]) + 1;
   } else {
@@ -331,7 +134,7 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
                                           : "an array of " + std::to_string(D) + " knot vectors (arrays of numbers)";
     if (!knots_json.is_array() || knots_json.size() != static_cast<std::size_t>(D)) fail(knots_what, knots_json, knots_path);
     for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
-      const std::string at = index_path(knots_path, d);
+      const std::string at = json_index_path(knots_path, d);
       std::vector<double> values = numbers(knots_json[d], at, "a knot vector (an array of numbers)");
       // The count is checked before anything is sized by the degree.
       const std::uint64_t needed = 2 * (static_cast<std::uint64_t>(degrees[d]) + 1);
@@ -350,7 +153,7 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
   }
 
   // Control points: the count must match the grid; every point has k = size of the first.
-  const std::string points_path = key_path(path, "control_points");
+  const std::string points_path = json_key_path(path, "control_points");
   const json& points_json = required(object, "control_points", path, "an array of control points, u fastest");
   if (!points_json.is_array()) fail("an array of control points (arrays of numbers)", points_json, points_path);
   std::uint64_t expected = 1;
@@ -370,33 +173,33 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
   const std::size_t n = points_json.size();
   const json& first = points_json[0];
   if (!first.is_array() || first.empty()) {
-    fail("a control point (an array of at least one number)", first, index_path(points_path, 0));
+    fail("a control point (an array of at least one number)", first, json_index_path(points_path, 0));
   }
   const std::size_t k = first.size();
-  if (k > static_cast<std::size_t>(INT_MAX)) fail("a control point with fewer coordinates", first, index_path(points_path, 0));
+  if (k > static_cast<std::size_t>(INT_MAX)) fail("a control point with fewer coordinates", first, json_index_path(points_path, 0));
   std::vector<double> points;
   points.reserve(n * k);
   for (std::size_t i = 0; i < n; ++i) {
     const json& point = points_json[i];
-    const std::string at = index_path(points_path, i);
+    const std::string at = json_index_path(points_path, i);
     if (!point.is_array() || point.size() != k) {
       fail("a control point with " + std::to_string(k) + (k == 1 ? " coordinate" : " coordinates") +
                " (as many as control_points[0])",
            point, at);
     }
-    for (std::size_t c = 0; c < k; ++c) points.push_back(number(point[c], index_path(at, c)));
+    for (std::size_t c = 0; c < k; ++c) points.push_back(number(point[c], json_index_path(at, c)));
   }
 
   // Weights (optional): one per control point, each >= 0.
   std::vector<double> weights;
   if (const auto it = object.find("weights"); it != object.end()) {
-    const std::string weights_path = key_path(path, "weights");
+    const std::string weights_path = json_key_path(path, "weights");
     if (!it->is_array() || it->size() != n) {
       fail("an array of " + std::to_string(n) + " weights (one per control point)", *it, weights_path);
     }
     weights = numbers(*it, weights_path, "an array of weights");
     for (std::size_t i = 0; i < n; ++i) {
-      if (weights[i] < 0.0) fail("a weight >= 0", (*it)[i], index_path(weights_path, i));
+      if (weights[i] < 0.0) fail("a weight >= 0", (*it)[i], json_index_path(weights_path, i));
     }
   }
 
@@ -419,7 +222,7 @@ std::map<std::string, std::vector<double>> read_attributes(const json& value, co
   if (!value.is_object()) fail("an object of named arrays of numbers (one number per control point)", value, path);
   std::map<std::string, std::vector<double>> attributes;
   for (const auto& item : value.items()) {
-    const std::string at = key_path(path, item.key());
+    const std::string at = json_key_path(path, item.key());
     if (item.key().empty()) throw InvalidInput("expected a nonempty attribute name, got \"\"", at);
     const std::string what = "an array of " + std::to_string(count) + " numbers (one per control point)";
     if (!item.value().is_array() || item.value().size() != static_cast<std::size_t>(count)) fail(what, item.value(), at);
@@ -434,7 +237,7 @@ ModelObject read_object(const json& object, const std::string& path) {
 
   const json& type_json = required(object, "type", path, "one of bspline_curve, bspline_surface, bspline_volume, "
                                                          "bezier_curve, bezier_surface, bezier_volume");
-  const std::string type_path = key_path(path, "type");
+  const std::string type_path = json_key_path(path, "type");
   std::string names;
   for (const TypeInfo& t : kTypes) names += (names.empty() ? "" : ", ") + std::string(t.name);
   if (!type_json.is_string()) fail("a type name (one of " + names + ")", type_json, type_path);
@@ -444,12 +247,12 @@ ModelObject read_object(const json& object, const std::string& path) {
   if (type->bezier && object.contains("knots")) {
     throw InvalidInput(std::string("a ") + type->name + " has no \"knots\": its domain is [0, 1] in every direction "
                            "(use type \"bspline_" + (type_name.c_str() + 7) + "\" to give knots)",
-                       key_path(path, "knots"));
+                       json_key_path(path, "knots"));
   }
 
   std::string name;
   if (const auto it = object.find("name"); it != object.end()) {
-    if (!it->is_string()) fail("a string", *it, key_path(path, "name"));
+    if (!it->is_string()) fail("a string", *it, json_key_path(path, "name"));
     name = it->get<std::string>();
   }
   json object_metadata = metadata(object, path);
@@ -465,7 +268,7 @@ ModelObject read_object(const json& object, const std::string& path) {
   };
   ModelObject result{std::move(name), type->bezier, spline(), std::move(object_metadata)};
   if (const auto it = object.find("attributes"); it != object.end()) {
-    result.attributes = read_attributes(*it, key_path(path, "attributes"),
+    result.attributes = read_attributes(*it, json_key_path(path, "attributes"),
                                         std::visit([](const auto& s) { return s.num_control_points_total(); }, result.spline));
   }
   return result;
@@ -490,7 +293,7 @@ Model read_document(const json& root) {
   Model model;
   model.metadata = metadata(root, "");
   model.objects.reserve(objects.size());
-  for (std::size_t i = 0; i < objects.size(); ++i) model.objects.push_back(read_object(objects[i], index_path("objects", i)));
+  for (std::size_t i = 0; i < objects.size(); ++i) model.objects.push_back(read_object(objects[i], json_index_path("objects", i)));
   return model;
 }
 
@@ -570,7 +373,7 @@ void write_spline(std::ostringstream& out, const TensorSpline<D>& spline, bool b
     if (spline.knot_vector(d).degree() > kMaxModelDegree) {
       throw InvalidInput("expected a degree of at most " + std::to_string(kMaxModelDegree) +
                              " (the limit of model files), got " + std::to_string(spline.knot_vector(d).degree()),
-                         index_path(key_path(path, "degree"), static_cast<std::size_t>(d)));
+                         json_index_path(json_key_path(path, "degree"), static_cast<std::size_t>(d)));
     }
   }
   out << indent << "\"degree\": [";
@@ -611,7 +414,7 @@ void write_attributes(std::ostringstream& out, const ModelObject& object, const 
   out << ",\n" << indent << "\"attributes\": {\n";
   std::size_t i = 0;
   for (const auto& [name, values] : object.attributes) {
-    const std::string at = key_path(key_path(path, "attributes"), name);
+    const std::string at = json_key_path(json_key_path(path, "attributes"), name);
     out << indent << "  " << json_text(json(name), at, indent, false) << ": ";
     write_numbers(out, values.data(), values.size(), indent + "  ");
     out << (++i < object.attributes.size() ? ",\n" : "\n");
@@ -623,7 +426,7 @@ void write_attributes(std::ostringstream& out, const ModelObject& object, const 
 
 Model parse_model(std::string_view text, const std::string& source_name) {
   try {
-    return read_document(parse_json(text));
+    return read_document(parse_json_document(text));
   } catch (const InvalidInput& e) {
     std::string where = source_name;
     if (!where.empty() && !e.where().empty()) where += ": ";
@@ -649,7 +452,7 @@ std::string object_type_name(const ModelObject& object) {
 void validate_attributes(const ModelObject& object) {
   const int count = std::visit([](const auto& s) { return s.num_control_points_total(); }, object.spline);
   for (const auto& [name, values] : object.attributes) {
-    const std::string at = key_path("attributes", name);
+    const std::string at = json_key_path("attributes", name);
     if (name.empty()) throw InvalidInput("expected a nonempty attribute name, got \"\"", at);
     if (values.size() != static_cast<std::size_t>(count)) {
       throw InvalidInput("expected " + std::to_string(count) + " values (one per control point), got " +
@@ -658,7 +461,7 @@ void validate_attributes(const ModelObject& object) {
     }
     for (std::size_t i = 0; i < values.size(); ++i) {
       if (!std::isfinite(values[i])) {
-        throw InvalidInput("expected a finite number, got " + format_double(values[i]), index_path(at, i));
+        throw InvalidInput("expected a finite number, got " + format_double(values[i]), json_index_path(at, i));
       }
     }
   }
@@ -687,7 +490,7 @@ double evaluate_attribute(const ModelObject& object, const std::string& name, co
         try {
           field.emplace(attribute_spline(spline, it->second));
         } catch (const InvalidInput& e) {
-          throw e.located(key_path("attributes", name));
+          throw e.located(json_key_path("attributes", name));
         }
         double value = 0.0;
         field->evaluate(parameter, &value);
@@ -703,17 +506,17 @@ std::string model_to_json(const Model& model) {
   const std::string indent = "      ";
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
     const ModelObject& object = model.objects[i];
-    const std::string path = index_path("objects", i);
+    const std::string path = json_index_path("objects", i);
     out << "    {\n";
     if (!object.name.empty()) {
-      out << indent << "\"name\": " << json_text(json(object.name), key_path(path, "name"), indent, false) << ",\n";
+      out << indent << "\"name\": " << json_text(json(object.name), json_key_path(path, "name"), indent, false) << ",\n";
     }
     const std::string type = object_type_name(object);
     out << indent << "\"type\": \"" << type << "\",\n";
     const bool bezier = type.rfind("bezier_", 0) == 0;
     std::visit([&](const auto& spline) { write_spline(out, spline, bezier, indent, path); }, object.spline);
     if (!object.attributes.empty()) write_attributes(out, object, path, indent);
-    if (!object.metadata.is_null()) write_metadata(out, object.metadata, key_path(path, "metadata"), indent);
+    if (!object.metadata.is_null()) write_metadata(out, object.metadata, json_key_path(path, "metadata"), indent);
     out << "\n    }" << (i + 1 < model.objects.size() ? ",\n" : "\n");
   }
   out << "  ]";
@@ -726,8 +529,5 @@ void write_model(const Model& model, const std::filesystem::path& path) {
   write_file_atomically(path, model_to_json(model));
 }
 
-nlohmann::json parse_json_document(std::string_view text) { return parse_json(text); }
-
-std::string describe_json_value(const nlohmann::json& value) { return describe(value); }
 
 }  // namespace volspline

@@ -4,10 +4,10 @@
 
 #include <random>
 
-#include "../spline/test_splines.h"
-#include "jacobian_test_volumes.h"
+#include "support/test_splines.h"
+#include "support/jacobian_test_volumes.h"
 #include "volspline/analysis/cone_bounds.h"
-#include "volspline/analysis/jacobian_cells.h"
+#include "volspline/analysis/jacobian_subdivision.h"
 #include "volspline/construct/paper_examples.h"
 #include "volspline/core/error.h"
 #include "volspline/construct/primitives.h"
@@ -16,7 +16,7 @@
 namespace volspline {
 namespace {
 
-using testing::jacobian_at;
+using test_support::jacobian_at;
 
 // Local parameters of t in a Bézier cell.
 std::array<double, 3> local(const BSplineVolume& cell, const std::array<double, 3>& t) {
@@ -37,7 +37,7 @@ std::array<double, 3> random_point(std::mt19937& rng, const BSplineVolume& v) {
 TEST(JacobianBezier, PolynomialCoefficientsReproduceTheDeterminantOfTheDerivatives) {
   std::mt19937 rng(11);
   for (int trial = 0; trial < 6; ++trial) {
-    const auto volume = testing::random_spline<3>(rng, {1 + trial % 3, 2, 3 - trial % 2}, 3, 3, false);
+    const auto volume = test_support::random_spline<3>(rng, {1 + trial % 3, 2, 3 - trial % 2}, 3, 3, false);
     for (const auto& cell : bezier_pieces(volume)) {
       const auto j = jacobian_bezier_coefficients(cell, extraction_error_bound(volume));
       const auto deg = cell.degrees();
@@ -56,8 +56,8 @@ TEST(JacobianBezier, PolynomialCoefficientsReproduceTheDeterminantOfTheDerivativ
 
 TEST(JacobianBezier, RationalCoefficientsAreWeightToTheFourthTimesJ) {
   std::mt19937 rng(12);
-  for (const BSplineVolume& volume : {testing::random_spline<3>(rng, {2, 2, 1}, 2, 3, true), torus(3.0, 1.0),
-                                      testing::random_spline<3>(rng, {2, 3, 2}, 2, 3, true, true, 1, true)}) {
+  for (const BSplineVolume& volume : {test_support::random_spline<3>(rng, {2, 2, 1}, 2, 3, true), torus(3.0, 1.0),
+                                      test_support::random_spline<3>(rng, {2, 3, 2}, 2, 3, true, true, 1, true)}) {
     for (const auto& cell : bezier_pieces(volume)) {
       const auto j = jacobian_bezier_coefficients(cell, extraction_error_bound(volume));
       ASSERT_TRUE(j.homogeneous);
@@ -74,20 +74,20 @@ TEST(JacobianBezier, RationalCoefficientsAreWeightToTheFourthTimesJ) {
 }
 
 TEST(JacobianBezier, KnownFoldHasJacobianVSquaredMinusS) {
-  const auto v = testing::fold_volume();
+  const auto v = test_support::fold_volume();
   const auto j = jacobian_bezier_coefficients(v);
   for (double u : {0.0, 0.3, 1.0})
     for (double vv : {-1.0, -0.2, 0.55, 1.0})
       for (double w : {0.0, 0.7}) {
-        const double expected = vv * vv - testing::fold_s(u, w);
+        const double expected = vv * vv - test_support::fold_s(u, w);
         EXPECT_NEAR(bernstein_evaluate(j.coefficients, local(v, {u, vv, w})), expected, 1e-13);
       }
 }
 
 TEST(JacobianBezier, RejectsWhatIsNotOneBezierCellInSpace) {
   std::mt19937 rng(13);
-  EXPECT_THROW(jacobian_bezier_coefficients(testing::random_spline<3>(rng, {2, 2, 2}, 2, 3, false)), InvalidInput);
-  EXPECT_THROW(jacobian_bezier_coefficients(bezier_pieces(testing::random_spline<3>(rng, {2, 2, 2}, 1, 2, false))[0]),
+  EXPECT_THROW(jacobian_bezier_coefficients(test_support::random_spline<3>(rng, {2, 2, 2}, 2, 3, false)), InvalidInput);
+  EXPECT_THROW(jacobian_bezier_coefficients(bezier_pieces(test_support::random_spline<3>(rng, {2, 2, 2}, 1, 2, false))[0]),
                InvalidInput);
 }
 
@@ -98,8 +98,8 @@ TEST(JacobianBounds, BothMethodsContainTheSampledRangeOnRandomCells) {
   std::uniform_int_distribution<int> dir(0, 2);
   std::uniform_real_distribution<double> unit(0, 1);
   int bezier_tighter = 0, cells = 0;
-  for (const BSplineVolume& volume : {twisted_loft(), curved_loft(), testing::fold_volume(),
-                                      testing::random_spline<3>(rng, {3, 2, 2}, 2, 3, false)}) {
+  for (const BSplineVolume& volume : {twisted_loft(), curved_loft(), test_support::fold_volume(),
+                                      test_support::random_spline<3>(rng, {3, 2, 2}, 2, 3, false)}) {
     const JacobianSubdivision bezier(volume, JacobianBoundMethod::Bezier), cone(volume, JacobianBoundMethod::Cone);
     auto b_roots = bezier.roots();
     auto c_roots = cone.roots();

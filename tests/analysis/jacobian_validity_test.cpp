@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "jacobian_test_volumes.h"
+#include "support/jacobian_test_volumes.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/construct/paper_examples.h"
 #include "volspline/construct/primitives.h"
@@ -11,7 +11,7 @@
 namespace volspline {
 namespace {
 
-using testing::jacobian_at;
+using test_support::jacobian_at;
 
 TEST(JacobianValidity, RightAndLeftHandedVolumesAreValidWithTheirOrientation) {
   Eigen::Matrix3d mirror = Eigen::Matrix3d::Identity();
@@ -39,7 +39,7 @@ TEST(JacobianValidity, RightAndLeftHandedVolumesAreValidWithTheirOrientation) {
 TEST(JacobianValidity, NearlySingularButPositiveIsValid) {
   // min J = 1e-6 x max J (max about 0.49 + e at a corner).
   const double e = 0.49e-6;
-  const auto v = testing::near_singular_volume(e);
+  const auto v = test_support::near_singular_volume(e);
   const auto r = check_jacobian(v);
   EXPECT_EQ(r.verdict, JacobianVerdict::Valid);
   EXPECT_EQ(r.orientation, 1);
@@ -49,7 +49,7 @@ TEST(JacobianValidity, NearlySingularButPositiveIsValid) {
 
 TEST(JacobianValidity, TouchingBelowZeroIsInvalidWithAWitness) {
   const double e = -0.49e-6;  // J = (v - c(u))^2 - 4.9e-7 < 0 in a thin slab around v = c(u)
-  const auto v = testing::near_singular_volume(e);
+  const auto v = test_support::near_singular_volume(e);
   const auto r = check_jacobian(v);
   ASSERT_EQ(r.verdict, JacobianVerdict::Invalid);
   ASSERT_TRUE(r.witness.has_value());
@@ -93,7 +93,7 @@ TEST(JacobianValidity, ConeBoundsReachTheSameVerdictsWithMoreCells) {
 TEST(JacobianValidity, BudgetExhaustedIsUndecided) {
   JacobianValidityOptions o;
   o.max_cells = 1;
-  const auto r = check_jacobian(testing::near_singular_volume(0.49e-6), o);
+  const auto r = check_jacobian(test_support::near_singular_volume(0.49e-6), o);
   EXPECT_EQ(r.verdict, JacobianVerdict::Undecided);
   EXPECT_EQ(r.orientation, 0);
   EXPECT_LE(r.lower, 0.49e-6);

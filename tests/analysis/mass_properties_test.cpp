@@ -14,7 +14,7 @@
 #include <random>
 #include <vector>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/affine_map.h"
@@ -290,7 +290,7 @@ TEST(MassProperties, FreeFormVolumesMatchTheDivergenceTheorem) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 6; ++trial) {
     const std::array<int, 3> degrees{1 + trial % 3, 3, 2 + trial % 2};
-    const auto v = testing::random_spline<3>(rng, degrees, 2, 3, false, trial % 2 == 0);
+    const auto v = test_support::random_spline<3>(rng, degrees, 2, 3, false, trial % 2 == 0);
     MassPropertiesOptions quick;
     quick.max_quadrature_points = 0;  // the exact pass only: signed quantities are exact anyway
     const auto m = mass_properties(v, quick);
@@ -414,7 +414,7 @@ TEST(MassProperties, HalfCylinderShellWithPointsAtInfinity) {
 
 TEST(MassProperties, RationalWithConstantWeightsEqualsPolynomial) {
   std::mt19937 rng(5);
-  const auto poly = testing::random_spline<3>(rng, {2, 3, 2}, 2, 3, false);
+  const auto poly = test_support::random_spline<3>(rng, {2, 3, 2}, 2, 3, false);
   std::vector<double> w(static_cast<std::size_t>(poly.num_control_points_total()), 2.0);
   const BSplineVolume rational(poly.knot_vectors(), 3, poly.points(), w);
   MassPropertiesOptions quick;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "volspline/analysis/jacobian_validity.h"
-#include "volspline/analysis/solid_boundary.h"
+#include "volspline/extract/solid_boundary.h"
 #include "volspline/boxspline/blend_examples.h"
 #include "volspline/boxspline/zero_set.h"
 #include "volspline/construct/example_solids.h"

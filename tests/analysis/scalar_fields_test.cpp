@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/jacobian_test_volumes.h"
-#include "spline/test_splines.h"
+#include "support/jacobian_test_volumes.h"
+#include "support/test_splines.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
@@ -26,16 +26,16 @@ TEST(ScalarField, NamesRoundTrip) {
 
 TEST(ScalarField, JacobianIsTheAnalyticDeterminant) {
   // The fold volume's J = v^2 - s(u, w) in closed form.
-  const BSplineVolume v = testing::fold_volume();
+  const BSplineVolume v = test_support::fold_volume();
   std::mt19937 rng(2);
   const auto t = random_parameters(rng, v, 50);
   const auto j = evaluate_scalar_field(v, scalar_field_named("jacobian"), t);
-  for (std::size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(j[i], t[i][1] * t[i][1] - testing::fold_s(t[i][0], t[i][2]), 1e-12);
+  for (std::size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(j[i], t[i][1] * t[i][1] - test_support::fold_s(t[i][0], t[i][2]), 1e-12);
 }
 
 TEST(ScalarField, ParametersAreTheParameters) {
   std::mt19937 rng(4);
-  const BSplineVolume v = testing::random_spline<3>(rng, {2, 2, 2}, 2, 3, false);
+  const BSplineVolume v = test_support::random_spline<3>(rng, {2, 2, 2}, 2, 3, false);
   const auto t = random_parameters(rng, v, 20);
   for (int d = 0; d < 3; ++d) {
     const auto values = evaluate_scalar_field(v, scalar_field_named(std::string(1, "uvw"[d])), t);
@@ -49,7 +49,7 @@ TEST(ScalarField, AnAttributeEqualToACoordinateReproducesThatCoordinate) {
   // rational volumes (the attribute shares the weights).
   std::mt19937 rng(6);
   for (const bool rational : {false, true}) {
-    const BSplineVolume v = testing::random_spline<3>(rng, {2, 3, 1}, 2, 3, rational);
+    const BSplineVolume v = test_support::random_spline<3>(rng, {2, 3, 1}, 2, 3, rational);
     std::vector<double> x;
     for (std::size_t i = 0; i < v.points().size(); i += 3) x.push_back(v.points()[i]);
     const auto t = random_parameters(rng, v, 30);

@@ -11,7 +11,7 @@
 #include <random>
 
 #include "volspline/boxspline/bezier_form.h"
-#include "volspline/boxspline/quartic_tables.h"
+#include "boxspline/quartic_tables.h"
 #include "volspline/boxspline/seven_direction_box_spline.h"
 #include "volspline/core/error.h"
 

@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "io/exchange_support.h"
+#include "support/exchange_support.h"
 #include "support/cli_runner.h"
 #include "support/temporary_directory.h"
 #include "volspline/io/model_file.h"

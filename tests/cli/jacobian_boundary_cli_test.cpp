@@ -4,8 +4,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "../support/cli_runner.h"
-#include "../support/temporary_directory.h"
+#include "support/cli_runner.h"
+#include "support/temporary_directory.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/mesh/mesh_reader.h"
 

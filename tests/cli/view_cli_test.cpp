@@ -5,8 +5,8 @@
 #include <set>
 #include <stb_image.h>
 
-#include "../support/cli_runner.h"
-#include "../support/temporary_directory.h"
+#include "support/cli_runner.h"
+#include "support/temporary_directory.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/mesh/mesh_reader.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {

@@ -7,8 +7,8 @@
 
 #include <Eigen/Geometry>
 
-#include "spline/geometry_checks.h"
-#include "spline/test_splines.h"
+#include "support/geometry_checks.h"
+#include "support/test_splines.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/affine_map.h"
 #include "volspline/spline/iso_restriction.h"
@@ -17,8 +17,8 @@
 namespace volspline {
 namespace {
 
-using testing::random_parameter;
-using testing::random_spline;
+using test_support::random_parameter;
+using test_support::random_spline;
 
 // The parameter of `s` mapped onto [0, 1]^2, as make_compatible maps the domain.
 std::array<double, 3> unit(const BSplineSurface& s, const std::array<double, 2>& uv, double w) {
@@ -136,7 +136,7 @@ TEST(Loft, ReproducesARuledVolumeFromItsSections) {
   for (auto param : {LoftParameterization::ChordLength, LoftParameterization::Centripetal}) {
     const auto lofted = loft(samples, 3, param);
     if (param == LoftParameterization::ChordLength) {
-      testing::expect_same_geometry(ruled, lofted, rng);  // chord lengths recover w exactly
+      test_support::expect_same_geometry(ruled, lofted, rng);  // chord lengths recover w exactly
     } else {
       // centripetal parameters differ from w, but the loft is still the same solid: every
       // section lies in it, and the w-lines are the same straight segments

@@ -9,7 +9,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {

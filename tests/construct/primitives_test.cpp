@@ -10,7 +10,7 @@
 #include <random>
 
 #include "volspline/core/error.h"
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {

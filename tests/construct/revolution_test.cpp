@@ -10,15 +10,15 @@
 
 #include <Eigen/Geometry>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/iso_restriction.h"
 
 namespace volspline {
 namespace {
 
-using testing::random_parameter;
-using testing::random_spline;
+using test_support::random_parameter;
+using test_support::random_spline;
 
 struct AxisFrame {
   Eigen::Vector3d a, n, e1, e2;  // e1, e2, n right-handed

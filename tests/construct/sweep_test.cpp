@@ -9,7 +9,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/affine_map.h"
 
@@ -18,7 +18,7 @@ namespace {
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
-using testing::random_spline;
+using test_support::random_spline;
 
 Vector3d at(const BSplineCurve& c, double t) {
   const auto x = c.evaluate({t});

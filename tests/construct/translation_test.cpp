@@ -5,15 +5,15 @@
 
 #include <random>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/affine_map.h"
 
 namespace volspline {
 namespace {
 
-using testing::random_parameter;
-using testing::random_spline;
+using test_support::random_parameter;
+using test_support::random_spline;
 
 struct Case {
   bool rational_surface, rational_curve, zero_weight, clamped;

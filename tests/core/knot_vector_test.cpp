@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
@@ -14,7 +14,7 @@ TEST(KnotVector, PartitionOfUnityEverywhere) {
   std::mt19937 rng(1);
   for (int trial = 0; trial < 40; ++trial) {
     const int p = 1 + trial % 5;
-    const KnotVector kv = testing::random_knots(rng, p, 4, trial % 2 == 0, p + 1);
+    const KnotVector kv = test_support::random_knots(rng, p, 4, trial % 2 == 0, p + 1);
     std::uniform_real_distribution<double> u(kv.domain_min(), kv.domain_max());
     std::vector<double> N(static_cast<std::size_t>(p + 1));
     std::vector<double> samples{kv.domain_min(), kv.domain_max()};
@@ -38,7 +38,7 @@ TEST(KnotVector, PartitionOfUnityEverywhere) {
 TEST(KnotVector, BasisDerivativesMatchFiniteDifferences) {
   std::mt19937 rng(2);
   for (int p = 1; p <= 5; ++p) {
-    const KnotVector kv = testing::random_knots(rng, p, 3, true, 1);
+    const KnotVector kv = test_support::random_knots(rng, p, 3, true, 1);
     std::uniform_real_distribution<double> u(kv.domain_min() + 0.01, kv.domain_max() - 0.01);
     const int order = p + 1;  // includes one order above the degree, which must be zero
     std::vector<double> D0((order + 1) * (p + 1)), Dp(D0.size()), Dm(D0.size());

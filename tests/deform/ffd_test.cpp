@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "support/test_meshes.h"
 #include "volspline/core/error.h"
 #include "volspline/deform/ffd.h"
@@ -151,9 +151,9 @@ void expect_exact_composition(const Lattice& lattice, const TensorSpline<D>& obj
   const auto p = lattice.volume.degrees();
   for (int m = 0; m < D; ++m) EXPECT_EQ(composed.degrees()[m], (p[0] + p[1] + p[2]) * d[m]);
   EXPECT_EQ(composed.is_rational(), object.is_rational() || lattice.volume.is_rational());
-  const double scale = testing::coefficient_scale(lattice.volume);
+  const double scale = test_support::coefficient_scale(lattice.volume);
   for (int n = 0; n < 200; ++n) {
-    const auto t = testing::random_parameter(rng, object);
+    const auto t = test_support::random_parameter(rng, object);
     const Eigen::VectorXd x = object.evaluate(t);
     const Eigen::Vector3d expected = deform_point(lattice, Eigen::Vector3d(x[0], x[1], x[2]));
     const Eigen::VectorXd got = composed.evaluate(t);
@@ -171,7 +171,7 @@ TEST(Ffd, CompositionOfACurveThroughABezierLatticeIsExact) {
   std::mt19937 rng(5);
   for (const bool rational_curve : {false, true}) {
     for (const bool rational_lattice : {false, true}) {
-      const auto curve = testing::random_spline<1>(rng, {3}, 4, 3, rational_curve);
+      const auto curve = test_support::random_spline<1>(rng, {3}, 4, 3, rational_curve);
       const Lattice box = undeformed_lattice(control_points(curve.points()), {2, 3, 2}, {1, 1, 1}, 0.05, skew_directions());
       const Lattice lattice = perturbed(box, rng, 0.5, rational_lattice);
       expect_exact_composition(lattice, curve, rng);
@@ -182,7 +182,7 @@ TEST(Ffd, CompositionOfACurveThroughABezierLatticeIsExact) {
 TEST(Ffd, CompositionOfASurfaceIsExact) {
   std::mt19937 rng(6);
   for (const bool rational : {false, true}) {
-    const auto surface = testing::random_spline<2>(rng, {2, 1}, 3, 3, rational);
+    const auto surface = test_support::random_spline<2>(rng, {2, 1}, 3, 3, rational);
     const Lattice box = undeformed_lattice(control_points(surface.points()), {2, 1, 2}, {1, 1, 1}, 0.1, skew_directions());
     expect_exact_composition(perturbed(box, rng, 0.4, rational), surface, rng);
   }
@@ -190,18 +190,18 @@ TEST(Ffd, CompositionOfASurfaceIsExact) {
 
 TEST(Ffd, CompositionWithTheUndeformedLatticeReproducesTheCurve) {
   std::mt19937 rng(7);
-  const auto curve = testing::random_spline<1>(rng, {2}, 3, 3, false);
+  const auto curve = test_support::random_spline<1>(rng, {2}, 3, 3, false);
   const Lattice lattice = undeformed_lattice(control_points(curve.points()), {1, 2, 1}, {1, 1, 1}, 0.05);
   const auto composed = compose(lattice, curve);
   for (int n = 0; n < 100; ++n) {
-    const auto t = testing::random_parameter(rng, curve);
-    EXPECT_LE((composed.evaluate(t) - curve.evaluate(t)).norm(), 1e-12 * testing::coefficient_scale(curve));
+    const auto t = test_support::random_parameter(rng, curve);
+    EXPECT_LE((composed.evaluate(t) - curve.evaluate(t)).norm(), 1e-12 * test_support::coefficient_scale(curve));
   }
 }
 
 TEST(Ffd, SegmentedLatticeComposesExactlyInsideOneCellAndRefusesCrossings) {
   std::mt19937 rng(8);
-  const auto curve = testing::random_spline<1>(rng, {2}, 2, 3, false);
+  const auto curve = test_support::random_spline<1>(rng, {2}, 2, 3, false);
   const auto pts = control_points(curve.points());
   // A lattice around the curve, then a segmented one twice as large in every direction whose
   // first cell (of 2 x 2 x 2) is the same box: the curve lies in that cell.
@@ -221,12 +221,12 @@ TEST(Ffd, SegmentedLatticeComposesExactlyInsideOneCellAndRefusesCrossings) {
 
 TEST(Ffd, CompositionRejectsObjectsOutsideTheDomainAndHugeDegrees) {
   std::mt19937 rng(9);
-  const auto curve = testing::random_spline<1>(rng, {3}, 2, 3, false);
+  const auto curve = test_support::random_spline<1>(rng, {3}, 2, 3, false);
   std::vector<Eigen::Vector3d> half{Eigen::Vector3d::Zero(), Eigen::Vector3d(0.5, 0.5, 0.5)};
   EXPECT_THROW(compose(undeformed_lattice(half, {1, 1, 1}, {1, 1, 1}, 0.0), curve), InvalidInput);
-  const auto big = testing::random_spline<1>(rng, {9}, 1, 3, false);
+  const auto big = test_support::random_spline<1>(rng, {9}, 1, 3, false);
   EXPECT_THROW(compose(undeformed_lattice(control_points(big.points()), {3, 3, 3}), big), InvalidInput);  // 81 > 64
-  const auto planar = testing::random_spline<1>(rng, {2}, 1, 2, false);
+  const auto planar = test_support::random_spline<1>(rng, {2}, 1, 2, false);
   EXPECT_THROW(compose(undeformed_lattice(half, {1, 1, 1}), planar), InvalidInput);
 }
 

@@ -13,8 +13,8 @@
 #include <string>
 #include <pugixml.hpp>
 
-#include "io/exchange_support.h"
-#include "spline/test_splines.h"
+#include "support/exchange_support.h"
+#include "support/test_splines.h"
 #include "volspline/construct/primitives.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
@@ -94,7 +94,7 @@ TEST(GismoData, CubeFileIsSevenTrilinearHexahedraTheFirstRightHanded) {
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
     const auto& s = std::get<BSplineVolume>(model.objects[i].spline);
     for (int n = 0; n < 20; ++n) {
-      const double j = jacobian(s, testing::random_parameter(rng, s));
+      const double j = jacobian(s, test_support::random_parameter(rng, s));
       if (i == 0) {
         EXPECT_NEAR(j, 1.0, 1e-15);
       } else {
@@ -132,7 +132,7 @@ TEST(GismoData, CylinderIsAThickWalledNurbsCylinderAsGismoEvaluatesIt) {
   // Radius 0.5 + 0.5 v, z = 4 w: the weights are 1/sqrt(2) to 12 digits, so circles to ~1e-12.
   std::mt19937 rng(3);
   for (int n = 0; n < 200; ++n) {
-    const auto t = testing::random_parameter(rng, s);
+    const auto t = test_support::random_parameter(rng, s);
     const Eigen::Vector3d p = s.evaluate(t);
     EXPECT_NEAR(std::hypot(p.x(), p.y()), 0.5 + 0.5 * t[1], 1e-11);
     EXPECT_NEAR(p.z(), 4 * t[2], 1e-14);

@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "io/exchange_support.h"
+#include "support/exchange_support.h"
 #include "volspline/core/error.h"
 #include "volspline/io/irit_itd.h"
 
@@ -51,7 +51,7 @@ TEST(IritItd, TrivariateListsControlPointsWithUFastest) {
   const auto& box = std::get<BSplineVolume>(model.objects[0].spline);
   std::mt19937 rng(1);
   for (int n = 0; n < 50; ++n) {
-    const auto t = testing::random_parameter(rng, box);
+    const auto t = test_support::random_parameter(rng, box);
     EXPECT_NEAR((box.evaluate(t) - Eigen::Vector3d(1 + t[0], 2 * t[1], 3 * t[2])).norm(), 0.0, 1e-15);
   }
   // The Bézier trivariate of orders (2, 2, 3) whose values 0, 1, 2 in w give f = 2 w.
@@ -80,7 +80,7 @@ TEST(IritItd, RoundTripOfCurvesSurfacesAndVolumesIsExact) {
 
 TEST(IritItd, PointsAtInfinitySurviveAsWeightZeroHomogeneousPoints) {
   std::mt19937 rng(3);
-  Model model{{ModelObject{"inf", false, testing::random_spline<3>(rng, {2, 2, 2}, 2, 3, true, true, 1, true), nullptr}}, nullptr};
+  Model model{{ModelObject{"inf", false, test_support::random_spline<3>(rng, {2, 2, 2}, 2, 3, true, true, 1, true), nullptr}}, nullptr};
   const Model back = parse_irit_itd(irit_itd_text(model), "inf.itd");
   EXPECT_EQ(std::get<BSplineVolume>(back.objects[0].spline).homogeneous(), std::get<BSplineVolume>(model.objects[0].spline).homogeneous());
 }
@@ -124,7 +124,7 @@ TEST(IritItd, BadTokensNameFileLineAndExpectation) {
 
 TEST(IritItd, MoreThanNineCoordinatesCannotBeWritten) {
   std::mt19937 rng(4);
-  Model model{{ModelObject{"", false, testing::random_spline<1>(rng, {2}, 2, 10, false), nullptr}}, nullptr};
+  Model model{{ModelObject{"", false, test_support::random_spline<1>(rng, {2}, 2, 10, false), nullptr}}, nullptr};
   EXPECT_THROW(irit_itd_text(model), InvalidInput);
 }
 

@@ -8,8 +8,8 @@
 #include <random>
 #include <string>
 
-#include "io/exchange_support.h"
-#include "spline/test_splines.h"
+#include "support/exchange_support.h"
+#include "support/test_splines.h"
 #include "volspline/core/error.h"
 #include "volspline/io/model_file.h"
 #include "volspline/spline/attribute_spline.h"
@@ -69,13 +69,13 @@ TEST(ModelAttributes, AnAttributeEqualToACoordinateEvaluatesToThatCoordinate) {
   for (const bool rational : {false, true}) {
     for (const bool zero_weight : {false, true}) {
       if (zero_weight && !rational) continue;
-      const auto spline = testing::random_spline<3>(rng, {2, 3, 2}, 3, 3, rational, true, 2, zero_weight);
+      const auto spline = test_support::random_spline<3>(rng, {2, 3, 2}, 3, 3, rational, true, 2, zero_weight);
       ModelObject object{"", false, spline, nullptr};
       std::vector<double> x;
       for (int i = 0; i < spline.num_control_points_total(); ++i) x.push_back(spline.points()[3 * static_cast<std::size_t>(i)]);
       object.attributes["x"] = x;
       for (int s = 0; s < 100; ++s) {
-        const auto t = testing::random_parameter(rng, spline);
+        const auto t = test_support::random_parameter(rng, spline);
         EXPECT_NEAR(evaluate_attribute(object, "x", {t[0], t[1], t[2]}), spline.evaluate(t)[0], 1e-12);
       }
     }
@@ -85,18 +85,18 @@ TEST(ModelAttributes, AnAttributeEqualToACoordinateEvaluatesToThatCoordinate) {
 TEST(ModelAttributes, AConstantAttributeIsConstantEvenWhenRational) {
   // Partition of unity of the rational basis: sum_i N_i w_i c / sum_i N_i w_i = c.
   std::mt19937 rng(14);
-  const auto spline = testing::random_spline<2>(rng, {3, 2}, 4, 2, true, false);
+  const auto spline = test_support::random_spline<2>(rng, {3, 2}, 4, 2, true, false);
   ModelObject object{"", false, spline, nullptr};
   object.attributes["c"] = std::vector<double>(static_cast<std::size_t>(spline.num_control_points_total()), 2.5);
   for (int s = 0; s < 100; ++s) {
-    const auto t = testing::random_parameter(rng, spline);
+    const auto t = test_support::random_parameter(rng, spline);
     EXPECT_NEAR(evaluate_attribute(object, "c", {t[0], t[1]}), 2.5, 1e-13);
   }
 }
 
 TEST(ModelAttributes, SplitCoordinatesUndoesAppendCoordinates) {
   std::mt19937 rng(15);
-  const auto spline = testing::random_spline<3>(rng, {2, 1, 2}, 2, 3, true);
+  const auto spline = test_support::random_spline<3>(rng, {2, 1, 2}, 2, 3, true);
   const std::vector<double> field(static_cast<std::size_t>(spline.num_control_points_total()), 1.25);
   const auto [geometry, fields] = split_coordinates(append_coordinates(spline, {field}), 3);
   EXPECT_EQ(geometry.points(), spline.points());

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "support/temporary_directory.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
@@ -22,7 +22,7 @@ namespace volspline {
 namespace {
 
 using nlohmann::json;
-using testing::random_spline;
+using test_support::random_spline;
 
 // ---------------------------------------------------------------------------------------------
 // Helpers

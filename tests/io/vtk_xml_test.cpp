@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "io/exchange_support.h"
+#include "support/exchange_support.h"
 #include "support/temporary_directory.h"
 #include "volspline/construct/primitives.h"
 #include "volspline/core/error.h"
@@ -217,7 +217,7 @@ TEST(VtuFile, OurReaderGivesBackEveryCellAndItsAttributes) {
             EXPECT_TRUE(cell.bezier);
             EXPECT_EQ(cell.attributes.size(), object.attributes.size());
             for (int n = 0; n < 10; ++n) {
-              const auto t = testing::random_parameter(rng, piece);
+              const auto t = test_support::random_parameter(rng, piece);
               typename S::Parameter unit{};
               std::vector<double> tv(t.begin(), t.end()), uv;
               for (int d = 0; d < D; ++d) {
@@ -275,7 +275,7 @@ TEST(VtuFile, WrongPointCountsAndOtherBadFilesSayWhere) {
 
 TEST(VtuFile, SplinesBeyondThreeCoordinatesAreRefused) {
   std::mt19937 rng(4);
-  EXPECT_THROW(vtu_text(Model{{ModelObject{"", false, testing::random_spline<3>(rng, {1, 1, 1}, 1, 4, false), nullptr}}, nullptr}), InvalidInput);
+  EXPECT_THROW(vtu_text(Model{{ModelObject{"", false, test_support::random_spline<3>(rng, {1, 1, 1}, 1, 4, false), nullptr}}, nullptr}), InvalidInput);
 }
 
 }  // namespace

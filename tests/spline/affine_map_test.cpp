@@ -2,14 +2,14 @@
 
 #include <gtest/gtest.h>
 
-#include "spline/geometry_checks.h"
+#include "support/geometry_checks.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
 namespace {
 
-using testing::random_parameter;
-using testing::random_spline;
+using test_support::random_parameter;
+using test_support::random_spline;
 
 TEST(AffineMap, MapsTheSplineLikeItsControlPoints) {
   std::mt19937 rng(70);
@@ -82,7 +82,7 @@ namespace {
 TEST(BoundingBox, SubdividedBoxIsTightForUnclampedAndLongRunsOfPointsAtInfinity) {
   std::mt19937 rng(72);
   // unclamped: control points outside the domain must not widen the subdivided box
-  const auto s = testing::random_spline<2>(rng, {3, 2}, 3, 2, true, false);
+  const auto s = test_support::random_spline<2>(rng, {3, 2}, 3, 2, true, false);
   const auto [lo, hi] = bounding_box(s, 3);
   Eigen::Vector2d slo = Eigen::Vector2d::Constant(1e300), shi = -slo;
   for (int i = 0; i <= 60; ++i)

@@ -4,13 +4,13 @@
 
 #include <algorithm>
 
-#include "spline/geometry_checks.h"
+#include "support/geometry_checks.h"
 
 namespace volspline {
 namespace {
 
-using testing::expect_same_geometry;
-using testing::random_spline;
+using test_support::expect_same_geometry;
+using test_support::random_spline;
 
 template <int D>
 void check_elevation(const TensorSpline<D>& s, std::mt19937& rng) {

@@ -2,14 +2,14 @@
 
 #include <gtest/gtest.h>
 
-#include "spline/geometry_checks.h"
+#include "support/geometry_checks.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
 namespace {
 
-using testing::random_parameter;
-using testing::random_spline;
+using test_support::random_parameter;
+using test_support::random_spline;
 
 // The derivative spline's value equals the evaluated partial derivative, and differentiating it
 // again gives the second partials: Joy-Duchaineau §3 against evaluate_derivatives.
@@ -21,7 +21,7 @@ void check_derivative_spline(const TensorSpline<D>& s, std::mt19937& rng) {
     if (s.knot_vector(d).degree() < 2) continue;
     const auto ds = derivative_spline(s, d);
     EXPECT_EQ(ds.knot_vector(d).degree(), s.knot_vector(d).degree() - 1);
-    const double scale = 1e-11 * testing::coefficient_scale(ds);
+    const double scale = 1e-11 * test_support::coefficient_scale(ds);
     for (int i = 0; i < 40; ++i) {
       const auto t = random_parameter(rng, s);
       const auto exact = s.evaluate_derivatives(t, 2);

@@ -2,13 +2,13 @@
 
 #include <gtest/gtest.h>
 
-#include "spline/geometry_checks.h"
+#include "support/geometry_checks.h"
 
 namespace volspline {
 namespace {
 
-using testing::random_parameter;
-using testing::random_spline;
+using test_support::random_parameter;
+using test_support::random_spline;
 
 template <int D>
 void check_restriction(const TensorSpline<D>& s, std::mt19937& rng) {
@@ -23,7 +23,7 @@ void check_restriction(const TensorSpline<D>& s, std::mt19937& rng) {
           t[static_cast<std::size_t>(e)] = e == d ? value : tr[static_cast<std::size_t>(j++)];
         const auto a = s.evaluate(t);
         const auto b = r.evaluate(tr);
-        for (int c = 0; c < s.dimension(); ++c) EXPECT_NEAR(a[c], b[c], 1e-13 * testing::coefficient_scale(s));
+        for (int c = 0; c < s.dimension(); ++c) EXPECT_NEAR(a[c], b[c], 1e-13 * test_support::coefficient_scale(s));
       }
     }
   }

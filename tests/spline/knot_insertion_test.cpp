@@ -2,14 +2,14 @@
 
 #include <gtest/gtest.h>
 
-#include "spline/geometry_checks.h"
+#include "support/geometry_checks.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
 namespace {
 
-using testing::expect_same_geometry;
-using testing::random_spline;
+using test_support::expect_same_geometry;
+using test_support::random_spline;
 
 template <int D>
 void check_insertion(const TensorSpline<D>& s, std::mt19937& rng) {

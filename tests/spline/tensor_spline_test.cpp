@@ -6,15 +6,15 @@
 #include <numbers>
 #include <random>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
 namespace {
 
-using testing::coefficient_scale;
-using testing::random_parameter;
-using testing::random_spline;
+using test_support::coefficient_scale;
+using test_support::random_parameter;
+using test_support::random_spline;
 
 // Derivatives of every order up to 3 against central differences of the order below, for
 // polynomial and rational splines of every D.
@@ -83,8 +83,8 @@ TEST(TensorSpline, PolynomialsAreReproducedExactly) {
   // Control points at the Greville abscissae of a linear function reproduce it exactly, and a
   // tricubic volume with control points on the Greville grid is the identity map.
   std::mt19937 rng(11);
-  std::array<KnotVector, 3> knots{testing::random_knots(rng, 3, 3, true, 2), testing::random_knots(rng, 2, 4, false, 1),
-                                  testing::random_knots(rng, 1, 2, true, 1)};
+  std::array<KnotVector, 3> knots{test_support::random_knots(rng, 3, 3, true, 2), test_support::random_knots(rng, 2, 4, false, 1),
+                                  test_support::random_knots(rng, 1, 2, true, 1)};
   std::vector<double> pts;
   auto greville = [&](int d, int i) {
     const auto& K = knots[static_cast<std::size_t>(d)];

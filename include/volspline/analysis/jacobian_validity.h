@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "volspline/analysis/jacobian_cells.h"
+#include "volspline/analysis/jacobian_subdivision.h"
 #include "volspline/core/progress.h"
 
 namespace volspline {

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+
 #include "volspline/spline/tensor_spline.h"
 
 namespace volspline {
@@ -71,16 +72,6 @@ void write_model(const Model& model, const std::filesystem::path& path);
 
 /// The "type" the object is written with: "bezier_curve", "bspline_volume", ...
 std::string object_type_name(const ModelObject& object);
-
-/// The JSON text parsed the way model files are: duplicate keys, nesting deeper than 64 levels
-/// and numbers beyond the range of a double are errors. Other JSON formats (scene files) share
-/// it. \throw InvalidInput located at the JSON path, or at "line L, column C" for text that is
-/// not JSON.
-nlohmann::json parse_json_document(std::string_view text);
-
-/// A JSON value described for an error message: "null", "3.5", "the string \"x\"", "an array
-/// of 2 elements", "an object".
-std::string describe_json_value(const nlohmann::json& value);
 
 /// The value of the attribute `name` of `object` at the parameter `t` (one number per parameter
 /// direction of the object). The attribute is interpolated like a coordinate of the control

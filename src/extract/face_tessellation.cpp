@@ -1,4 +1,4 @@
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 
 #include <algorithm>
 #include <array>

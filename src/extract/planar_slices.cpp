@@ -1,4 +1,4 @@
-#include "volspline/mesh/planar_slices.h"
+#include "volspline/extract/planar_slices.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 #include "volspline/core/conventions.h"
 #include "volspline/core/error.h"
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/marching_tetrahedra.h"
 
 namespace volspline {

@@ -1,4 +1,4 @@
-#include "volspline/analysis/jacobian_cells.h"
+#include "volspline/analysis/jacobian_subdivision.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,13 +1,13 @@
-#include "volspline/mesh/isoparametric_surfaces.h"
+#include "volspline/extract/isoparametric_surfaces.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "volspline/core/conventions.h"
 #include "volspline/core/error.h"
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 
 namespace volspline {
 namespace {
@@ -22,7 +22,7 @@ TEST(IsoparametricValues, SpanTheDomainWithBothEndsOrTakeTheMiddle) {
 TEST(IsoparametricSurface, VerticesAreTheVolumeAtTheirParametersWithTheFixedValue) {
   std::mt19937 rng(11);
   for (const bool rational : {false, true}) {
-    const BSplineVolume v = testing::random_spline<3>(rng, {2, 3, 1}, 3, 3, rational);
+    const BSplineVolume v = test_support::random_spline<3>(rng, {2, 3, 1}, 3, 3, rational);
     for (int d = 0; d < 3; ++d) {
       const double value = 0.3 * v.domain_min(d) + 0.7 * v.domain_max(d);
       const TriangleMesh s = isoparametric_surface(v, d, value, {.resolution = 6});
@@ -42,7 +42,7 @@ TEST(IsoparametricSurface, VerticesAreTheVolumeAtTheirParametersWithTheFixedValu
 
 TEST(IsoparametricSurface, EndSurfacesOfAFamilyAreTheBoundaryFaces) {
   std::mt19937 rng(3);
-  const BSplineVolume v = testing::random_spline<3>(rng, {2, 2, 2}, 2, 3, false);
+  const BSplineVolume v = test_support::random_spline<3>(rng, {2, 2, 2}, 2, 3, false);
   const TriangleMesh family = isoparametric_family(v, 2, 4, {.resolution = 5});
   const TriangleMesh faces = tessellate_faces(v, {.resolution = 5, .weld_coincident = false});
   // Every vertex of the family with w at an end is a vertex of the w = min or w = max face.
@@ -62,7 +62,7 @@ TEST(IsoparametricSurface, EndSurfacesOfAFamilyAreTheBoundaryFaces) {
 
 TEST(IsoparametricSurfacesThrough, ThreeSurfacesEachHoldingOneParameter) {
   std::mt19937 rng(8);
-  const BSplineVolume v = testing::random_spline<3>(rng, {3, 2, 2}, 2, 3, true);
+  const BSplineVolume v = test_support::random_spline<3>(rng, {3, 2, 2}, 2, 3, true);
   const std::array<double, 3> t{0.25 * v.domain_min(0) + 0.75 * v.domain_max(0), 0.5 * (v.domain_min(1) + v.domain_max(1)),
                                 v.domain_min(2)};
   const TriangleMesh m = isoparametric_surfaces_through(v, t, {.resolution = 4});
@@ -79,7 +79,7 @@ TEST(IsoparametricSurfacesThrough, ThreeSurfacesEachHoldingOneParameter) {
 
 TEST(IsoparametricSurface, RejectsValuesOutsideTheDomainAndBadDirections) {
   std::mt19937 rng(1);
-  const BSplineVolume v = testing::random_spline<3>(rng, {1, 1, 1}, 1, 3, false);
+  const BSplineVolume v = test_support::random_spline<3>(rng, {1, 1, 1}, 1, 3, false);
   EXPECT_THROW(isoparametric_surface(v, 0, v.domain_max(0) + 1e-9), InvalidInput);
   EXPECT_THROW(isoparametric_surface(v, 3, v.domain_min(0)), InvalidInput);
   EXPECT_THROW(isoparametric_surface(v, 1, v.domain_min(1), {.resolution = 0}), InvalidInput);

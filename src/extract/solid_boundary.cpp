@@ -1,4 +1,4 @@
-#include "volspline/analysis/solid_boundary.h"
+#include "volspline/extract/solid_boundary.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/core/progress.h"
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/marching_tetrahedra.h"
 
 namespace volspline {

@@ -9,7 +9,7 @@
 
 #include "volspline/spline/tensor_spline.h"
 
-namespace volspline::testing {
+namespace volspline::test_support {
 
 inline KnotVector random_knots(std::mt19937& rng, int degree, int spans, bool clamped, int max_multiplicity) {
   std::uniform_real_distribution<double> gap(0.3, 1.0);
@@ -79,4 +79,4 @@ double coefficient_scale(const TensorSpline<D>& s) {
   return m;
 }
 
-}  // namespace volspline::testing
+}  // namespace volspline::test_support

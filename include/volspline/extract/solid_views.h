@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "volspline/mesh/planar_slices.h"
+#include "volspline/extract/planar_slices.h"
 #include "volspline/mesh/triangle_mesh.h"
 #include "volspline/spline/tensor_spline.h"
 

@@ -1,11 +1,11 @@
-#include "volspline/mesh/solid_views.h"
+#include "volspline/extract/solid_views.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "volspline/core/error.h"
-#include "volspline/mesh/face_tessellation.h"
-#include "volspline/mesh/isoparametric_surfaces.h"
+#include "volspline/extract/face_tessellation.h"
+#include "volspline/extract/isoparametric_surfaces.h"
 #include "volspline/mesh/mesh_clipping.h"
 
 namespace volspline {

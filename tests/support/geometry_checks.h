@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 
-namespace volspline::testing {
+namespace volspline::test_support {
 
 /// `reference` and `other` agree (values and first derivatives, 1e-12 relative) at random points
 /// of `other`'s domain, which must lie inside the reference's domain, and (values only: one-sided
@@ -50,4 +50,4 @@ void expect_same_geometry(const TensorSpline<D>& reference, const TensorSpline<D
   }
 }
 
-}  // namespace volspline::testing
+}  // namespace volspline::test_support

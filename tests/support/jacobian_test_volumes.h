@@ -10,7 +10,7 @@
 
 #include "volspline/spline/tensor_spline.h"
 
-namespace volspline::testing {
+namespace volspline::test_support {
 
 /// The Bézier volume of degree `degrees` on `lo`..`hi` that interpolates `f` at uniformly spaced
 /// points: exact whenever f is a polynomial of at most those degrees.
@@ -77,4 +77,4 @@ inline double jacobian_at(const BSplineVolume& v, const std::array<double, 3>& t
   return pu.dot(pv.cross(pw));
 }
 
-}  // namespace volspline::testing
+}  // namespace volspline::test_support

@@ -1,11 +1,11 @@
-#include "volspline/mesh/isoparametric_surfaces.h"
+#include "volspline/extract/isoparametric_surfaces.h"
 
 #include <string>
 
 #include "volspline/core/conventions.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 
 namespace volspline {
 

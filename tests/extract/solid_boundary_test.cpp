@@ -1,11 +1,11 @@
-#include "volspline/analysis/solid_boundary.h"
+#include "volspline/extract/solid_boundary.h"
 
 #include <gtest/gtest.h>
 
 #include <map>
 #include <random>
 
-#include "jacobian_test_volumes.h"
+#include "support/jacobian_test_volumes.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/construct/paper_examples.h"
 #include "volspline/construct/primitives.h"
@@ -15,8 +15,8 @@
 namespace volspline {
 namespace {
 
-using testing::fold_s;
-using testing::jacobian_at;
+using test_support::fold_s;
+using test_support::jacobian_at;
 
 bool on_domain_boundary(const BSplineVolume& v, const Eigen::Vector3d& t) {
   for (int d = 0; d < 3; ++d) {
@@ -53,7 +53,7 @@ void expect_crack_free(const BSplineVolume& v, const TriangleMesh& mesh) {
 }
 
 TEST(SolidBoundary, KnownFoldIsFoundWithinTheToleranceAndCoveredBothWays) {
-  const auto v = testing::fold_volume();  // J = v^2 - s(u, w) on [0,1] x [-1,1] x [0,1]
+  const auto v = test_support::fold_volume();  // J = v^2 - s(u, w) on [0,1] x [-1,1] x [0,1]
   BoundaryOptions options;
   options.tolerance = 1e-3;
   const auto result = jacobian_zero_surface(v, options);
@@ -85,7 +85,7 @@ TEST(SolidBoundary, KnownFoldIsFoundWithinTheToleranceAndCoveredBothWays) {
 }
 
 TEST(SolidBoundary, SnappedVerticesLieOnTheZeroSet) {
-  const auto v = testing::fold_volume();
+  const auto v = test_support::fold_volume();
   BoundaryOptions options;
   options.snap = true;
   const auto result = jacobian_zero_surface(v, options);
@@ -129,7 +129,7 @@ TEST(SolidBoundary, ValidVolumesHaveNoImplicitSurface) {
 }
 
 TEST(SolidBoundary, UniformBaselineFindsTheSameSurface) {
-  const auto v = testing::fold_volume();
+  const auto v = test_support::fold_volume();
   BoundaryOptions options;
   options.method = ZeroSurfaceMethod::Uniform;
   options.resolution = 40;

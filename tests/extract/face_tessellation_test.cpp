@@ -1,4 +1,4 @@
-#include "volspline/mesh/face_tessellation.h"
+#include "volspline/extract/face_tessellation.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <numbers>
 #include <random>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {

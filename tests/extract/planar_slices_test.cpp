@@ -1,4 +1,4 @@
-#include "volspline/mesh/planar_slices.h"
+#include "volspline/extract/planar_slices.h"
 
 #include <cmath>
 #include <map>
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/jacobian_test_volumes.h"
+#include "support/jacobian_test_volumes.h"
 #include "volspline/construct/primitives.h"
 #include "volspline/core/conventions.h"
 #include "volspline/core/error.h"
@@ -16,9 +16,9 @@
 namespace volspline {
 namespace {
 
-using testing::fold_s;
-using testing::fold_volume;
-using testing::interpolating_bezier;
+using test_support::fold_s;
+using test_support::fold_volume;
+using test_support::interpolating_bezier;
 
 double mesh_area(const TriangleMesh& mesh) {
   double area = 0;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "spline/test_splines.h"
+#include "support/test_splines.h"
 #include "volspline/io/model_file.h"
 
 namespace volspline::test {
@@ -31,12 +31,12 @@ inline Model random_exchange_model(std::mt19937& rng, int dimension = 3) {
     }
     model.objects.push_back(std::move(object));
   };
-  add(testing::random_spline<1>(rng, {3}, 4, dimension, false), "curve");
-  add(testing::random_spline<1>(rng, {2}, 3, dimension, true), "rational_curve");
-  add(testing::random_spline<2>(rng, {2, 3}, 3, dimension, false), "surface");
-  add(testing::random_spline<2>(rng, {3, 2}, 2, dimension, true, false), "rational_surface");
-  add(testing::random_spline<3>(rng, {2, 1, 3}, 2, dimension, false), "volume");
-  add(testing::random_spline<3>(rng, {2, 2, 2}, 2, dimension, true), "rational_volume");
+  add(test_support::random_spline<1>(rng, {3}, 4, dimension, false), "curve");
+  add(test_support::random_spline<1>(rng, {2}, 3, dimension, true), "rational_curve");
+  add(test_support::random_spline<2>(rng, {2, 3}, 3, dimension, false), "surface");
+  add(test_support::random_spline<2>(rng, {3, 2}, 2, dimension, true, false), "rational_surface");
+  add(test_support::random_spline<3>(rng, {2, 1, 3}, 2, dimension, false), "volume");
+  add(test_support::random_spline<3>(rng, {2, 2, 2}, 2, dimension, true), "rational_volume");
   return model;
 }
 
@@ -51,7 +51,7 @@ double max_difference(const TensorSpline<D>& a, const TensorSpline<D>& b, std::m
   }
   double worst = 0.0;
   for (int s = 0; s < samples; ++s) {
-    auto t = testing::random_parameter(rng, a);
+    auto t = test_support::random_parameter(rng, a);
     if (s < (1 << D)) {
       for (int d = 0; d < D; ++d) t[static_cast<std::size_t>(d)] = (s >> d) & 1 ? a.domain_max(d) : a.domain_min(d);
     }
@@ -77,7 +77,7 @@ inline double max_model_difference(const Model& a, const Model& b, std::mt19937&
           EXPECT_EQ(a.objects[i].attributes.size(), b.objects[i].attributes.size()) << "object " << i;
           for (const auto& [name, values] : a.objects[i].attributes) {
             for (int s = 0; s < 20; ++s) {
-              const auto t = testing::random_parameter(rng, x);
+              const auto t = test_support::random_parameter(rng, x);
               const std::vector<double> tv(t.begin(), t.end());
               worst = std::max(worst, std::abs(evaluate_attribute(a.objects[i], name, tv) - evaluate_attribute(b.objects[i], name, tv)));
             }

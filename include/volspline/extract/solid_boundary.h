@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-#include "volspline/analysis/jacobian_cells.h"
+#include "volspline/analysis/jacobian_subdivision.h"
 #include "volspline/core/progress.h"
 #include "volspline/mesh/triangle_mesh.h"
 
