@@ -1,6 +1,7 @@
 #pragma once
-// Errors that cross the library boundary. The command line maps InvalidInput to exit code 2
-// (bad input or usage) and every other Error to exit code 1 (internal failure).
+// Errors that cross the library boundary. The command line maps InvalidInput and IoError to
+// exit code 2 (bad input or usage: a file the user named that cannot be read or written is the
+// user's to fix) and every other Error to exit code 1 (internal failure).
 #include <stdexcept>
 #include <string>
 
@@ -29,7 +30,7 @@ class InvalidInput : public Error {
   std::string where_;
 };
 
-/// A file that cannot be opened, read or written.
+/// A file that cannot be opened, read or written (the CLI exits with code 2).
 class IoError : public Error {
  public:
   using Error::Error;
