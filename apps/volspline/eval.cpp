@@ -5,6 +5,7 @@
 #include "cli_support.h"
 #include "commands.h"
 #include "volspline/core/error.h"
+#include "volspline/io/model_volumes.h"
 
 namespace volspline::cli {
 
@@ -86,7 +87,7 @@ void add_eval_command(CLI::App& app) {
                              std::to_string(model.objects.size()) + " object(s)",
                          "--object");
     const auto& object = model.objects[r->object];
-    r->location = input->path + ": objects[" + std::to_string(r->object) + "]";
+    r->location = object_location(input->path, r->object);
     const int k = std::visit([](const auto& s) { return s.dimension(); }, object.spline);
     const auto rows = std::visit([&](const auto& s) { return evaluate_rows(s, *r); }, object.spline);
     if (r->json) {

@@ -8,6 +8,7 @@
 #include "volspline/deform/lattice.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
+#include "volspline/io/model_volumes.h"
 #include "volspline/mesh/mesh_reader.h"
 #include "volspline/mesh/mesh_writer.h"
 #include "volspline/render/image.h"
@@ -45,7 +46,7 @@ void add_ffd_command(CLI::App& app) {
           else if (auto* f = std::get_if<BSplineSurface>(&object.spline)) object.spline = deform_surface(lattice, *f);
           else throw InvalidInput("expected a curve or a surface; deform volumes by composing their control points with `make`", "type");
         } catch (const InvalidInput& e) {
-          throw e.located(*in + ": objects[" + std::to_string(i) + "]");
+          throw e.located(object_location(*in, i));
         }
         object.bezier = false;
       }
