@@ -38,9 +38,9 @@ std::vector<std::string> readme_command_lines(const std::string& markdown) {
 }
 
 // `line` with the binary under test for every build/bin/volspline, `scratch` for every /tmp/
-// and its trailing comment dropped.
+// and its trailing comment (" # ...") dropped.
 std::string runnable(std::string line, const std::filesystem::path& scratch) {
-  if (const auto hash = line.find("   #"); hash != std::string::npos) line.erase(hash);
+  line = std::regex_replace(line, std::regex("[ \t]+#.*$"), "");
   line = std::regex_replace(line, std::regex("(^|[ ;&|])build/bin/volspline "), "$1" + std::string(VOLSPLINE_CLI) + " ");
   line = std::regex_replace(line, std::regex("(^|[ =])/tmp/"), "$1" + scratch.string() + "/");
   return line;
