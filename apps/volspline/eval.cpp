@@ -5,6 +5,8 @@
 #include "cli_support.h"
 #include "commands.h"
 #include "volspline/core/error.h"
+#include "volspline/io/model_volumes.h"
+#include "volspline/pipeline/object_evaluation.h"
 
 namespace volspline::cli {
 
@@ -19,50 +21,25 @@ struct EvalRequest {
   std::string location;  // "FILE: objects[i]" for error messages
 };
 
-// Values (and first partials) of one object at the requested points, one row per point:
-// k numbers, then with derivatives D * k partials (x_u y_u z_u x_v ...).
-template <int D>
-std::vector<std::vector<double>> evaluate_rows(const TensorSpline<D>& s, const EvalRequest& r) {
-  const int order = r.derivatives ? 1 : 0;
-  const std::size_t k = static_cast<std::size_t>(s.dimension());
-  const std::size_t row = k * (order ? D + 1 : 1);
+// The rows of the requested points of `object`: the grid's, then each --at point's.
+std::vector<std::vector<double>> evaluate_rows(const ModelObject& object, const EvalRequest& r) {
+  const auto parameters = static_cast<std::size_t>(parameter_count(object));
   std::vector<std::vector<double>> rows;
   if (!r.grid.empty()) {
-    const auto n = parse_integers(r.grid, D, 2, "--grid");
+    const auto n = parse_integers(r.grid, parameters, 2, "--grid");
     double requested = 1.0;
     for (int x : n) requested *= x;
     if (requested > 5e7) throw InvalidInput("expected at most 50 million grid points, got '" + r.grid + "'", "--grid");
-    std::array<std::vector<double>, D> samples;
-    std::size_t total = 1;
-    for (int d = 0; d < D; ++d) {
-      const auto dd = static_cast<std::size_t>(d);
-      for (int i = 0; i < n[dd]; ++i) {
-        // exact endpoints: the last sample is the domain maximum itself
-        const double a = s.domain_min(d), b = s.domain_max(d);
-        samples[dd].push_back(i == n[dd] - 1 ? b : a + (b - a) * i / (n[dd] - 1));
-      }
-      total *= static_cast<std::size_t>(n[dd]);
-    }
-    const auto values = s.evaluate_grid(samples, order);
-    for (std::size_t p = 0; p < total; ++p) {
-      std::vector<double> line(row);
-      for (std::size_t a = 0; a < row / k; ++a)
-        for (std::size_t c = 0; c < k; ++c) line[a * k + c] = values[(a * total + p) * k + c];
-      rows.push_back(std::move(line));
-    }
+    rows = evaluate_object_on_grid(object, n, r.derivatives);
   }
   for (std::size_t i = 0; i < r.at.size(); ++i) {
     const std::string where = r.location + " at --at[" + std::to_string(i) + "]";
-    const auto t = parse_numbers(r.at[i], D, where);
-    std::array<double, D> param{};
-    std::copy(t.begin(), t.end(), param.begin());
-    std::vector<double> line(row);
+    const auto t = parse_numbers(r.at[i], parameters, where);
     try {
-      s.evaluate_derivatives(param, order, line.data());
+      rows.push_back(evaluate_object_at(object, t, r.derivatives));
     } catch (const InvalidInput& e) {
       throw e.located(where);
     }
-    rows.push_back(std::move(line));
   }
   return rows;
 }
@@ -86,9 +63,9 @@ void add_eval_command(CLI::App& app) {
                              std::to_string(model.objects.size()) + " object(s)",
                          "--object");
     const auto& object = model.objects[r->object];
-    r->location = input->path + ": objects[" + std::to_string(r->object) + "]";
+    r->location = object_location(input->path, r->object);
     const int k = std::visit([](const auto& s) { return s.dimension(); }, object.spline);
-    const auto rows = std::visit([&](const auto& s) { return evaluate_rows(s, *r); }, object.spline);
+    const auto rows = evaluate_rows(object, *r);
     if (r->json) {
       nlohmann::json out;
       out["points"] = nlohmann::json::array();

@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/io/model_volumes.h"
 #include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
 #include "volspline/mesh/mesh_writer.h"
@@ -39,18 +40,9 @@ void add_faces_command(CLI::App& app) {
     if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + *size + "'", "--size");
     const Model model = input->read();
     TriangleMesh mesh;
-    int volumes = 0;
-    for (std::size_t i = 0; i < model.objects.size(); ++i) {
-      if (const auto* v = std::get_if<BSplineVolume>(&model.objects[i].spline)) {
-        try {
-          mesh.append(tessellate_faces(*v, {.resolution = *resolution}));
-        } catch (const InvalidInput& e) {
-          throw e.located(*in + ": objects[" + std::to_string(i) + "]");
-        }
-        ++volumes;
-      }
-    }
-    if (volumes == 0) throw InvalidInput("the model has no volume objects (bspline_volume or bezier_volume)", *in);
+    const std::size_t volumes = for_each_volume(model, *in, [&](std::size_t, const ModelObject&, const BSplineVolume& v) {
+      mesh.append(tessellate_faces(v, {.resolution = *resolution}));
+    });
     RenderOptions options;
     options.width = wh[0];
     options.height = wh[1];

@@ -4,12 +4,13 @@
 #include "cli_support.h"
 #include "commands.h"
 #include "volspline/core/error.h"
-#include "volspline/deform/ffd.h"
+#include "volspline/deform/ffd.h"  // deform_mesh
 #include "volspline/deform/lattice.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/mesh_reader.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/pipeline/model_deformation.h"
 #include "volspline/render/image.h"
 #include "volspline/render/mesh_renderer.h"
 
@@ -37,18 +38,7 @@ void add_ffd_command(CLI::App& app) {
       if (std::filesystem::path(*out).extension() != ".json")
         throw InvalidInput("a model input needs a .json output, got '" + *out + "'", "--output");
       const Lattice lattice = lattice_from_model(read_model(*lattice_path), *lattice_path);
-      Model model = read_model(*in);
-      for (std::size_t i = 0; i < model.objects.size(); ++i) {
-        auto& object = model.objects[i];
-        try {
-          if (auto* c = std::get_if<BSplineCurve>(&object.spline)) object.spline = deform_curve(lattice, *c);
-          else if (auto* f = std::get_if<BSplineSurface>(&object.spline)) object.spline = deform_surface(lattice, *f);
-          else throw InvalidInput("expected a curve or a surface; deform volumes by composing their control points with `make`", "type");
-        } catch (const InvalidInput& e) {
-          throw e.located(*in + ": objects[" + std::to_string(i) + "]");
-        }
-        object.bezier = false;
-      }
+      const Model model = deform_model(lattice, read_model(*in), *in);
       write_model(model, *out);
       std::cout << "wrote " << *out << " (" << model.objects.size() << " object(s), composed exactly)\n";
       return;

@@ -11,6 +11,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/model_formats.h"
+#include "volspline/io/model_volumes.h"
 
 namespace volspline::cli {
 
@@ -23,6 +24,20 @@ JacobianBoundMethod parse_bounds(const std::string& text) {
 }
 
 nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(x > 0 ? "inf" : "-inf"); }
+
+void print_validity(std::size_t i, const ModelObject& object, const BSplineVolume& v, const JacobianValidity& r) {
+  std::cout << "object " << i << (object.name.empty() ? "" : " (" + object.name + ")") << ": " << verdict_name(r.verdict);
+  if (r.verdict == JacobianVerdict::Valid) std::cout << ", orientation " << (r.orientation > 0 ? "+" : "-");
+  std::cout << "\n  J in [" << format_double(r.lower) << ", " << format_double(r.upper) << "]"
+            << (v.is_rational() ? " (rational: from the bounds of w^4 J and of w)" : "") << "\n";
+  if (r.witness) {
+    std::cout << "  witness (u, v, w) = (" << join_numbers(r.witness->data(), 3) << ") where "
+              << (r.witness_value == 0 ? "J = 0 (collapsed control points)"
+                                       : std::string(r.witness_value < 0 ? "J < 0" : "J > 0") + " (" + format_double(r.witness_value) + ")")
+              << "\n";
+  }
+  std::cout << "  " << r.cells << " cells, " << std::setprecision(3) << r.seconds * 1e3 << " ms\n";
+}
 
 }  // namespace
 
@@ -53,52 +68,28 @@ void add_jacobian_command(CLI::App& app) {
       const ProgressPhase phase(options.progress, "reading");
       return input->read();
     }();
-    int volume_count = 0;
-    for (const auto& object : model.objects) volume_count += std::holds_alternative<BSplineVolume>(object.spline);
+    const bool several = count_volumes(model) > 1;
     nlohmann::json out = {{"objects", nlohmann::json::array()}};
     bool any_invalid = false;
-    int volumes = 0;
-    for (std::size_t i = 0; i < model.objects.size(); ++i) {
-      const auto* v = std::get_if<BSplineVolume>(&model.objects[i].spline);
-      if (!v) continue;
-      ++volumes;
-      if (volume_count > 1) reporter().set_label("object " + std::to_string(i));
-      JacobianValidity r;
-      try {
-        r = check_jacobian(*v, options);
-      } catch (const InvalidInput& e) {
-        throw e.located(*in + ": objects[" + std::to_string(i) + "]");
-      }
+    for_each_volume(model, *in, [&](std::size_t i, const ModelObject& object, const BSplineVolume& v) {
+      if (several) reporter().set_label("object " + std::to_string(i));
+      const JacobianValidity r = check_jacobian(v, options);
       any_invalid = any_invalid || r.verdict == JacobianVerdict::Invalid;
       nlohmann::json o = {{"object", i},
-                          {"name", model.objects[i].name},
+                          {"name", object.name},
                           {"verdict", verdict_name(r.verdict)},
                           {"orientation", r.orientation},
                           {"lower", number(r.lower)},
                           {"upper", number(r.upper)},
                           {"witness", r.witness ? nlohmann::json(*r.witness) : nlohmann::json(nullptr)},
                           {"witness_value", r.witness ? nlohmann::json(r.witness_value) : nlohmann::json(nullptr)},
-                          {"rational", v->is_rational()},
+                          {"rational", v.is_rational()},
                           {"cells", r.cells},
                           {"seconds", r.seconds}};
       out["objects"].push_back(o);
-      if (!*json) {
-        std::cout << "object " << i << (model.objects[i].name.empty() ? "" : " (" + model.objects[i].name + ")") << ": "
-                  << verdict_name(r.verdict);
-        if (r.verdict == JacobianVerdict::Valid) std::cout << ", orientation " << (r.orientation > 0 ? "+" : "-");
-        std::cout << "\n  J in [" << format_double(r.lower) << ", " << format_double(r.upper) << "]"
-                  << (v->is_rational() ? " (rational: from the bounds of w^4 J and of w)" : "") << "\n";
-        if (r.witness) {
-          std::cout << "  witness (u, v, w) = (" << join_numbers(r.witness->data(), 3) << ") where "
-                    << (r.witness_value == 0 ? "J = 0 (collapsed control points)"
-                                             : std::string(r.witness_value < 0 ? "J < 0" : "J > 0") + " (" + format_double(r.witness_value) + ")")
-                    << "\n";
-        }
-        std::cout << "  " << r.cells << " cells, " << std::setprecision(3) << r.seconds * 1e3 << " ms\n";
-      }
-    }
+      if (!*json) print_validity(i, object, v, r);
+    });
     reporter().set_label("");
-    if (volumes == 0) throw InvalidInput("the model has no volume objects (bspline_volume or bezier_volume)", *in);
     if (*json) std::cout << out.dump(2) << "\n";
     if (*fail && any_invalid) throw ExitCode(3);
   });

@@ -82,12 +82,8 @@ Kind add_kind(CLI::App* make, const std::string& name, const std::string& descri
   return kind;
 }
 
-}  // namespace
-
-void add_make_command(CLI::App& app) {
-  auto* make = app.add_subcommand("make", "Build an exact solid (primitive, revolution, extrusion, loft, sweep, paper example) as a model file");
-  make->require_subcommand(1);
-
+// The exact primitives (docs/constructions.md).
+void add_primitive_kinds(CLI::App* make) {
   {
     auto size = std::make_shared<std::string>();
     auto k = add_kind(make, "box", "Axis-parallel box, degree (1,1,1)", true, [=](const Kind& k) {
@@ -133,6 +129,10 @@ void add_make_command(CLI::App& app) {
     k.app->add_option("--minor", *minor, "tube radius 0 < r < R")->required();
     k.app->add_option("--angle", *angle, "angle of the segment in degrees, in (0, 360] (default 360)");
   }
+}
+
+// Lasser's Figs. 2 and 3 and Joy-Duchaineau's Fig. 1: exact rational solids of the papers.
+void add_paper_solid_kinds(CLI::App* make) {
   {
     auto major = std::make_shared<double>(2.0), minor = std::make_shared<double>(1.0);
     auto k = add_kind(make, "half-torus", "Lasser Fig. 2: solid half torus, one Bézier volume of degree (1,2,2) with points at infinity", true,
@@ -156,6 +156,10 @@ void add_make_command(CLI::App& app) {
   }
   add_kind(make, "half-cylinder-sweep", "Joy-Duchaineau Fig. 1: (cos pi u + 3w, sin pi u, v), rational degree (2,1,1)", false,
            [](const Kind&) { return half_cylinder_sweep(); });
+}
+
+// Volumes made from profile surfaces read from model files: revolved, moved, ruled, lofted.
+void add_profile_kinds(CLI::App* make) {
   {
     auto profile = std::make_shared<std::string>(), point = std::make_shared<std::string>(), direction = std::make_shared<std::string>();
     auto angle = std::make_shared<double>();
@@ -212,6 +216,10 @@ void add_make_command(CLI::App& app) {
     k.app->add_option("--degree", *degree, "degree in w (default 3; at most the number of sections - 1)");
     k.app->add_flag("--centripetal", *centripetal, "centripetal instead of chord-length section parameters");
   }
+}
+
+// A profile swept along a path with a moving frame (docs/sweeps.md).
+void add_sweep_kind(CLI::App* make) {
   {
     auto profile = std::make_shared<std::string>(), path = std::make_shared<std::string>(), frame = std::make_shared<std::string>("rmf");
     auto k = add_kind(make, "sweep", "Sweep a profile surface along a curve with a moving frame, V = c(w) + R(w) F(u,v)", false, [=](const Kind&) {
@@ -233,11 +241,27 @@ void add_make_command(CLI::App& app) {
     k.app->add_option("--path", *path, "model file; its first curve is the path c(w)")->required();
     k.app->add_option("--frame", *frame, "rmf (rotation minimising, default), frenet, fixed, or a model file whose first 3 curves are the columns of R(w)");
   }
+}
+
+// Joy-Duchaineau's Figs. 10, 11 and 13, built in code.
+void add_joy_duchaineau_kinds(CLI::App* make) {
   add_kind(make, "swept-patch", "Joy-Duchaineau Fig. 10: a bicubic patch swept along a line", false, [](const Kind&) { return swept_patch(); });
   add_kind(make, "twisted-loft", "Joy-Duchaineau Fig. 11: the patch twisted 35 degrees while swept, sampled 4 times and lofted", false,
            [](const Kind&) { return twisted_loft(); });
   add_kind(make, "curved-loft", "Joy-Duchaineau Fig. 13: the patch swept along a curved path, sampled and lofted", false,
            [](const Kind&) { return curved_loft(); });
+}
+
+}  // namespace
+
+void add_make_command(CLI::App& app) {
+  auto* make = app.add_subcommand("make", "Build an exact solid (primitive, revolution, extrusion, loft, sweep, paper example) as a model file");
+  make->require_subcommand(1);
+  add_primitive_kinds(make);
+  add_paper_solid_kinds(make);
+  add_profile_kinds(make);
+  add_sweep_kind(make);
+  add_joy_duchaineau_kinds(make);
 }
 
 }  // namespace volspline::cli

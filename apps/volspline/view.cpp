@@ -3,27 +3,20 @@
 //   [--color jacobian|u|v|w|ATTRIBUTE] [--range MIN,MAX] [--mesh OUT] [--camera DX,DY,DZ[,UX,UY,UZ]]
 //   [--size W,H]: looking inside a solid (Lasser 1994 §IV).
 #include <algorithm>
-#include <cmath>
+#include <filesystem>
 #include <iostream>
-#include <limits>
 #include <optional>
 
 #include "cli_support.h"
 #include "commands.h"
 #include "progress_bar.h"
 #include "view_command.h"
-#include "volspline/analysis/scalar_fields.h"
 #include "volspline/core/error.h"
 #include "volspline/core/progress.h"
 #include "volspline/io/atomic_file.h"
-#include "volspline/io/model_file.h"
 #include "volspline/io/model_formats.h"
-#include "volspline/mesh/mesh_writer.h"
-#include "volspline/extract/solid_views.h"
+#include "volspline/pipeline/solid_view_picture.h"
 #include "volspline/render/color_bar.h"
-#include "volspline/render/colormap.h"
-#include "volspline/render/image.h"
-#include "volspline/render/mesh_renderer.h"
 
 namespace volspline::cli {
 namespace {
@@ -80,14 +73,8 @@ SolidViewRequest request_from(const ViewArguments& a) {
   return request;
 }
 
-}  // namespace
-
-void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
-  if (std::filesystem::path(a.image).extension() != ".png")
-    throw InvalidInput("expected a picture file name ending in .png, got '" + a.image + "'", "--output");
-  const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
-  if (mesh_format == MeshFormat::Stl && !a.color.empty())
-    throw InvalidInput("STL cannot carry the colouring; use .ply or .glb", "--mesh");
+// The render options of the arguments: size, camera, edges, background.
+RenderOptions render_options_from(const ViewArguments& a) {
   const auto wh = parse_integers(a.size, 2, 16, "--size");
   if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + a.size + "'", "--size");
   RenderOptions options;
@@ -102,100 +89,60 @@ void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
     if (count == 6) options.up = Eigen::Vector3d(c[3], c[4], c[5]);
     if (options.view_direction.norm() == 0) throw InvalidInput("the view direction must not be zero", "--camera");
   }
-  double range_min = std::numeric_limits<double>::quiet_NaN(), range_max = range_min;
+  return options;
+}
+
+SolidViewPictureRequest picture_request_from(const ViewArguments& a) {
+  SolidViewPictureRequest request;
+  request.render = render_options_from(a);
   if (!a.range.empty()) {
     const auto r = parse_numbers(a.range, 2, "--range");
     if (!(r[0] < r[1])) throw InvalidInput("expected MIN < MAX, got '" + a.range + "'", "--range");
-    range_min = r[0];
-    range_max = r[1];
+    request.range = std::pair(r[0], r[1]);
   }
-  const SolidViewRequest request = request_from(a);
-  const std::optional<ScalarField> field = a.color.empty() ? std::nullopt : std::optional(scalar_field_named(a.color));
+  request.view = request_from(a);
+  if (!a.color.empty()) request.color = scalar_field_named(a.color);
+  request.source_name = a.model;
+  return request;
+}
 
-  std::optional<ProgressPhase> phase(std::in_place, progress, "reading");
-  const Model model = read_model_file(a.model);
-  std::vector<std::size_t> volumes;
-  for (std::size_t i = 0; i < model.objects.size(); ++i)
-    if (std::holds_alternative<BSplineVolume>(model.objects[i].spline)) volumes.push_back(i);
-  if (volumes.empty()) throw InvalidInput("the model has no volume objects to look inside", a.model);
+}  // namespace
 
-  // One frame for all patches, so that a series of slices cuts a multipatch model evenly.
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const std::size_t i : volumes) {
-    try {
-      const auto box = sampled_bounding_box(std::get<BSplineVolume>(model.objects[i].spline));
-      lo = lo.cwiseMin(box.first);
-      hi = hi.cwiseMax(box.second);
-    } catch (const InvalidInput& e) {
-      throw e.located(a.model + ": objects[" + std::to_string(i) + "]");
+void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
+  if (std::filesystem::path(a.image).extension() != ".png")
+    throw InvalidInput("expected a picture file name ending in .png, got '" + a.image + "'", "--output");
+  const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
+  if (mesh_format == MeshFormat::Stl && !a.color.empty())
+    throw InvalidInput("STL cannot carry the colouring; use .ply or .glb", "--mesh");
+  const SolidViewPictureRequest request = picture_request_from(a);
+  const Model model = [&] {
+    const ProgressPhase phase(progress, "reading");
+    return read_model_file(a.model);
+  }();
+  const SolidViewPicture picture = solid_view_picture(model, request, progress);
+  if (picture.mesh.triangles.empty()) std::cerr << "volspline: note: nothing to show: the probes miss the solid\n";
+  {
+    const ProgressPhase phase(progress, "writing");
+    // Both files are prepared before either is committed, so a failure leaves neither behind.
+    const std::string png = png_bytes(picture.image);
+    if (!a.mesh.empty()) {
+      MeshWriteOptions mesh_options = picture.mesh_fields;
+      mesh_options.ascii = a.ascii;
+      AtomicFile mesh_file(a.mesh);
+      mesh_file.stream() << mesh_bytes(picture.mesh, mesh_format, mesh_options);
+      AtomicFile picture_file(a.image);
+      picture_file.stream() << png;
+      mesh_file.commit();
+      picture_file.commit();
+    } else {
+      write_file_atomically(a.image, png);
     }
   }
-  const std::vector<Plane> planes = requested_planes(request, lo, hi);
-
-  phase.emplace(progress, "surfaces", static_cast<double>(volumes.size()), "volumes");
-  TriangleMesh mesh;
-  std::vector<double> scalars;
-  for (const std::size_t i : volumes) {
-    const ModelObject& object = model.objects[i];
-    const auto& volume = std::get<BSplineVolume>(object.spline);
-    try {
-      const TriangleMesh part = solid_view_mesh(volume, request, planes);
-      if (field) {
-        std::vector<double> attribute;
-        if (field->kind == ScalarKind::Attribute) {
-          const auto it = object.attributes.find(field->attribute);
-          if (it == object.attributes.end()) {
-            std::string known;
-            for (const auto& [name, values] : object.attributes) known += (known.empty() ? "" : ", ") + name;
-            throw InvalidInput("--color " + a.color + ": expected jacobian, u, v, w or an attribute of the object (" +
-                               (known.empty() ? std::string("it has none") : "it has " + known) + ")");
-          }
-          attribute = it->second;
-        }
-        const auto values = evaluate_scalar_field(volume, *field, part.parameters, attribute);
-        scalars.insert(scalars.end(), values.begin(), values.end());
-      }
-      mesh.append(part);
-      phase->advance();
-    } catch (const InvalidInput& e) {
-      throw e.located(a.model + ": objects[" + std::to_string(i) + "]");
-    }
-  }
-
-  MeshWriteOptions mesh_options;
-  mesh_options.ascii = a.ascii;
-  if (field) {
-    const ScalarColoring coloring = suggested_coloring(scalars, field->kind == ScalarKind::Jacobian);
-    options.color = ColorMode::Scalar;
-    options.vertex_scalars = scalars;
-    options.colormap = coloring.map;
-    options.scalar_min = std::isnan(range_min) ? coloring.min : range_min;
-    options.scalar_max = std::isnan(range_max) ? coloring.max : range_max;
-    options.color_bar_title = field->name();
-    mesh_options.vertex_scalars = scalars;
-    mesh_options.scalar_name = is_ply_property_name(field->name()) ? field->name() : "attribute";
-    const auto [low, high] = scalar_range(mesh, options);
-    for (const double s : scalars) mesh_options.vertex_colors.push_back(colormap_color(options.colormap, (s - low) / (high - low)));
-  }
-  if (mesh.triangles.empty()) std::cerr << "volspline: note: nothing to show: the probes miss the solid\n";
-  phase.emplace(progress, "rendering");
-  const Image image = render_mesh(mesh, options);
-  phase.emplace(progress, "writing");
-  // Both files are prepared before either is committed, so a failure leaves neither behind.
-  const std::string picture = png_bytes(image);
-  if (!a.mesh.empty()) {
-    AtomicFile mesh_file(a.mesh);
-    mesh_file.stream() << mesh_bytes(mesh, mesh_format, mesh_options);
-    AtomicFile picture_file(a.image);
-    picture_file.stream() << picture;
-    mesh_file.commit();
-    picture_file.commit();
-  } else {
-    write_file_atomically(a.image, picture);
-  }
-  out << "wrote " << a.image << ": " << mesh.num_triangles() << " triangles from " << volumes.size() << " volume(s)";
-  if (!planes.empty()) out << ", " << planes.size() << " plane(s)";
-  if (field) out << "; " << field->name() << " in [" << color_bar_label(options.scalar_min) << ", " << color_bar_label(options.scalar_max) << "]";
+  out << "wrote " << a.image << ": " << picture.mesh.num_triangles() << " triangles from " << picture.volumes << " volume(s)";
+  if (!picture.planes.empty()) out << ", " << picture.planes.size() << " plane(s)";
+  if (request.color)
+    out << "; " << request.color->name() << " in [" << color_bar_label(picture.render.scalar_min) << ", "
+        << color_bar_label(picture.render.scalar_max) << "]";
   out << "\n";
   if (!a.mesh.empty()) out << "wrote " << a.mesh << "\n";
 }

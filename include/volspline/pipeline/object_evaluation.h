@@ -1,0 +1,24 @@
+#pragma once
+// A model object evaluated as `volspline eval` prints it: one row per point, the point's
+// coordinates and, with derivatives, its first partial derivatives — at parameters given one by
+// one, or on a uniform grid over the whole domain whose last samples are the domain's ends
+// exactly (no rounding off the domain).
+#include <vector>
+
+#include "volspline/io/model_file.h"
+
+namespace volspline {
+
+/// The k coordinates of `object` at `t` (one value per parameter), followed with `derivatives`
+/// by its first partials, direction by direction (x_u y_u z_u x_v ...): k (D + 1) numbers.
+/// \throw InvalidInput if t has not one value per parameter or lies outside the domain.
+std::vector<double> evaluate_object_at(const ModelObject& object, const std::vector<double>& t, bool derivatives = false);
+
+/// The rows of evaluate_object_at on the grid of counts[d] evenly spaced samples per direction d,
+/// both ends included, the first direction fastest; evaluated by sum factorisation
+/// (TensorSpline::evaluate_grid), not point by point.
+/// \throw InvalidInput if counts has not one entry per parameter or an entry is < 2.
+std::vector<std::vector<double>> evaluate_object_on_grid(const ModelObject& object, const std::vector<int>& counts,
+                                                         bool derivatives = false);
+
+}  // namespace volspline
