@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "volspline/mesh/part_colors.h"  // part_color, used by ColorMode::ByPart
+#include "volspline/mesh/parts.h"  // part_color, used by ColorMode::ByPart
 #include "volspline/mesh/triangle_mesh.h"
 #include "volspline/render/colormap.h"
 #include "volspline/render/image.h"
@@ -16,7 +16,7 @@
 namespace volspline {
 
 enum class ColorMode {
-  /// Each part its own colour (part_color).
+  /// Each part its own colour (part_color, the part table of mesh/parts.h).
   ByPart,
   /// Everything in RenderOptions::single_color.
   Single,
