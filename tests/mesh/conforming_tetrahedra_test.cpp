@@ -47,20 +47,10 @@ double volume_of(const LatticeBox& b) {
   return static_cast<double>(b.extent[0]) * static_cast<double>(b.extent[1]) * static_cast<double>(b.extent[2]);
 }
 
-// Checks volume and conformity of the tetrahedra of the kept boxes; returns the area of the
-// triangles used by one tetrahedron only (the boundary of the kept region).
-double expect_conforming(const std::vector<LatticeBox>& boxes) {
-  const ConformingTetrahedralMesh mesh = conforming_tetrahedra(boxes);
-  double kept_volume = 0;
-  for (const LatticeBox& b : boxes) kept_volume += b.kept ? volume_of(b) : 0.0;
-  double volume = 0;
+// How many tetrahedra use each triangle (sorted point ids).
+std::map<std::array<int, 3>, int> triangle_uses(const ConformingTetrahedralMesh& mesh) {
   std::map<std::array<int, 3>, int> faces;
   for (const auto& tet : mesh.tetrahedra) {
-    std::array<Eigen::Vector3d, 4> x;
-    for (std::size_t k = 0; k < 4; ++k) x[k] = point_of(mesh.points[static_cast<std::size_t>(tet[k])]);
-    const double six = std::abs((x[1] - x[0]).dot((x[2] - x[0]).cross(x[3] - x[0])));
-    EXPECT_GT(six, 0.0) << "degenerate tetrahedron";
-    volume += six / 6.0;
     for (int skip = 0; skip < 4; ++skip) {
       std::array<int, 3> f{};
       for (int k = 0, n = 0; k < 4; ++k) {
@@ -70,6 +60,24 @@ double expect_conforming(const std::vector<LatticeBox>& boxes) {
       ++faces[f];
     }
   }
+  return faces;
+}
+
+// Checks volume and conformity of the tetrahedra of the kept boxes; returns the area of the
+// triangles used by one tetrahedron only (the boundary of the kept region).
+double expect_conforming(const std::vector<LatticeBox>& boxes) {
+  const ConformingTetrahedralMesh mesh = conforming_tetrahedra(boxes);
+  double kept_volume = 0;
+  for (const LatticeBox& b : boxes) kept_volume += b.kept ? volume_of(b) : 0.0;
+  double volume = 0;
+  for (const auto& tet : mesh.tetrahedra) {
+    std::array<Eigen::Vector3d, 4> x;
+    for (std::size_t k = 0; k < 4; ++k) x[k] = point_of(mesh.points[static_cast<std::size_t>(tet[k])]);
+    const double six = std::abs((x[1] - x[0]).dot((x[2] - x[0]).cross(x[3] - x[0])));
+    EXPECT_GT(six, 0.0) << "degenerate tetrahedron";
+    volume += six / 6.0;
+  }
+  const std::map<std::array<int, 3>, int> faces = triangle_uses(mesh);
   EXPECT_NEAR(volume, kept_volume, 1e-9 * kept_volume);
   double once = 0;
   for (const auto& [face, count] : faces) {
@@ -100,19 +108,8 @@ TEST(ConformingTetrahedra, TrianglesUsedOnceLieOnTheBoundaryOfTheKeptRegion) {
     for (LatticeBox& b : boxes) b.kept = keep(rng);
     const ConformingTetrahedralMesh mesh = conforming_tetrahedra(boxes);
     expect_conforming(boxes);
-    // A triangle used once must lie in a plane of constant coordinate that bounds a kept box.
-    std::map<std::array<int, 3>, int> faces;
-    for (const auto& tet : mesh.tetrahedra) {
-      for (int skip = 0; skip < 4; ++skip) {
-        std::array<int, 3> f{};
-        for (int k = 0, n = 0; k < 4; ++k) {
-          if (k != skip) f[static_cast<std::size_t>(n++)] = tet[static_cast<std::size_t>(k)];
-        }
-        std::sort(f.begin(), f.end());
-        ++faces[f];
-      }
-    }
-    for (const auto& [f, count] : faces) {
+    // A triangle used once must lie in a plane of constant coordinate (a face of a kept box).
+    for (const auto& [f, count] : triangle_uses(mesh)) {
       if (count != 1) continue;
       bool planar = false;
       for (std::size_t a = 0; a < 3; ++a) {
