@@ -75,8 +75,8 @@ std::pair<double, double> scalar_range(const TriangleMesh& mesh, const RenderOpt
 
 /// Renders `mesh` as seen through a perspective camera fitted to it. A mesh with no visible
 /// triangles gives a picture of the background alone.
-/// \throw InvalidInput for a malformed mesh (validate_mesh) or options out of range, Error if
-/// Embree fails.
+/// \throw InvalidInput for a malformed mesh (validate_mesh), options out of range or, for
+/// ColorMode::Scalar, not one scalar per vertex; Error if Embree fails.
 Image render_mesh(const TriangleMesh& mesh, const RenderOptions& options = {});
 
 }  // namespace volspline
