@@ -16,6 +16,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/affine_map.h"
 
@@ -130,8 +131,7 @@ GridResult integrate(const Setup& setup, const BSplineVolume& local, const std::
       for (std::size_t i = 0; i < nx; ++i) {
         const std::size_t pt = i + nx * (j + ny * k);
         const Eigen::Map<const Eigen::Vector3d> x(P + 3 * pt), xu(Pu + 3 * pt), xv(Pv + 3 * pt), xw(Pw + 3 * pt);
-        const double J = xu[0] * (xv[1] * xw[2] - xv[2] * xw[1]) + xu[1] * (xv[2] * xw[0] - xv[0] * xw[2]) +
-                         xu[2] * (xv[0] * xw[1] - xv[1] * xw[0]);
+        const double J = jacobian_determinant(P + 3 * pt, static_cast<std::ptrdiff_t>(3 * np));
         j_min = std::min(j_min, J);
         j_max = std::max(j_max, J);
         scale = std::max(scale, xu.norm() * xv.norm() * xw.norm());
@@ -240,29 +240,23 @@ std::int64_t rule_points(const std::array<int, 3>& n) {
   return static_cast<std::int64_t>(n[0]) * n[1] * n[2];
 }
 
-}  // namespace
+// The reference point x0 and length scale from a box around the solid (weight-0 control points
+// are handled by bounding_box); moments are taken about x0 to avoid cancellation.
+void set_reference(const BSplineVolume& volume, Setup& setup) {
+  const auto [lo, hi] = bounding_box(volume, 0);
+  setup.x0 = 0.5 * (lo + hi);
+  setup.length = 0.5 * (hi - lo).norm();
+  if (!(setup.length > 0.0) || !std::isfinite(setup.length)) setup.length = 1.0;
+}
 
-MassProperties mass_properties(const BSplineVolume& volume, const MassPropertiesOptions& options) {
-  if (volume.dimension() != 3)
-    throw InvalidInput("mass properties need a volume in R^3, got one in R^" + std::to_string(volume.dimension()));
-  if (options.extra_points < 1) throw InvalidInput("mass properties: extra_points must be >= 1");
-
-  Setup setup;
-  setup.rational = volume.is_rational();
-  {
-    // Reference point and length scale from a box around the solid (weight-0 control points
-    // are handled by bounding_box); moments are taken about x0 to avoid cancellation.
-    const auto [lo, hi] = bounding_box(volume, 0);
-    setup.x0 = 0.5 * (lo + hi);
-    setup.length = 0.5 * (hi - lo).norm();
-    if (!(setup.length > 0.0) || !std::isfinite(setup.length)) setup.length = 1.0;
-  }
+// The exact and the high Gauss-Legendre rule in each direction.
+void add_rules(const BSplineVolume& volume, int extra_points, Setup& setup) {
   const auto degrees = volume.degrees();
   for (std::size_t d = 0; d < 3; ++d) {
     // x x^T |J| has degree 5p - 1 in this direction; n points integrate degree 2n - 1 exactly.
     const int p = degrees[d];
     setup.n_exact[d] = (5 * p + 1) / 2;
-    setup.n_high[d] = setup.n_exact[d] + options.extra_points;
+    setup.n_high[d] = setup.n_exact[d] + extra_points;
     for (int n : {setup.n_exact[d], setup.n_high[d]}) {
       if (setup.rules.count(n)) continue;
       Rule r;
@@ -272,9 +266,12 @@ MassProperties mass_properties(const BSplineVolume& volume, const MassProperties
       setup.rules.emplace(n, std::move(r));
     }
   }
+}
 
-  // Knot cells and their local splines: the (p+1)^3 control points of the cell with the 2p+2
-  // knots around its span in each direction; the local domain is exactly the cell.
+// Knot cells and their local splines: the (p+1)^3 control points of the cell with the 2p+2
+// knots around its span in each direction; the local domain is exactly the cell.
+void add_knot_cells(const BSplineVolume& volume, bool parallel, Setup& setup) {
+  const auto degrees = volume.degrees();
   std::array<std::vector<double>, 3> breaks;
   std::array<std::vector<int>, 3> spans;
   for (std::size_t d = 0; d < 3; ++d) {
@@ -289,7 +286,7 @@ MassProperties mass_properties(const BSplineVolume& volume, const MassProperties
   setup.cell_boxes.resize(num_cells);
   const int C = volume.coefficient_size();
   const auto counts = volume.num_control_points();
-  for_each_index(num_cells, options.parallel, [&](std::size_t c) {
+  for_each_index(num_cells, parallel, [&](std::size_t c) {
     const std::array<std::size_t, 3> idx{c % n0, (c / n0) % n1, c / (n0 * n1)};
     std::array<KnotVector, 3> knots{KnotVector::bezier(1), KnotVector::bezier(1), KnotVector::bezier(1)};
     std::array<int, 3> first{};
@@ -313,9 +310,12 @@ MassProperties mass_properties(const BSplineVolume& volume, const MassProperties
         }
     setup.cells[c].emplace(BSplineVolume::from_homogeneous(std::move(knots), 3, setup.rational, std::move(coefficients)));
   });
+}
 
-  std::vector<Region> regions(num_cells);
-  for_each_index(num_cells, options.parallel, [&](std::size_t c) {
+// One region per knot cell, integrated.
+std::vector<Region> initial_regions(const Setup& setup, bool parallel) {
+  std::vector<Region> regions(setup.cells.size());
+  for_each_index(regions.size(), parallel, [&](std::size_t c) {
     Region& r = regions[c];
     r.cell = static_cast<int>(c);
     for (std::size_t d = 0; d < 3; ++d) {
@@ -324,101 +324,103 @@ MassProperties mass_properties(const BSplineVolume& volume, const MassProperties
     }
     evaluate(setup, r);
   });
+  return regions;
+}
 
-  MassProperties result;
-  result.knot_cells = static_cast<int>(num_cells);
-  for (const Region& r : regions) {
-    result.folded_cells += r.folded ? 1 : 0;
-    result.quadrature_points += r.points;
-  }
+constexpr int kMaxDepth = 52;  // halvings of a cell per direction: below that, rounding rules
 
-  // Adaptive refinement: split the regions with the largest error estimates (in the directions
-  // whose indicators dominate) until the summed estimate meets the tolerance or the budget ends.
-  const std::int64_t child_cost = (setup.rational ? 0 : rule_points(setup.n_exact)) + rule_points(setup.n_high) + rule_points(setup.n_exact);
-  const std::int64_t direction_cost = rule_points(setup.n_high) + [&] {
-    std::int64_t s = 0;
+// The children of a region split in the directions whose indicators are within a tenth of the
+// largest (direction_errors must have run on it).
+void split_region(const Region& r, std::vector<Region>& children) {
+  std::array<bool, 3> split{};
+  double top = 0.0;
+  for (std::size_t d = 0; d < 3; ++d)
+    if (r.depth[d] < kMaxDepth) top = std::max(top, r.direction_error[d]);
+  for (std::size_t d = 0; d < 3; ++d) split[d] = r.depth[d] < kMaxDepth && r.direction_error[d] >= 0.1 * top;
+  for (int mask = 0; mask < (1 << 3); ++mask) {
+    bool valid = true;
+    Region child;
+    child.cell = r.cell;
+    child.depth = r.depth;
     for (std::size_t d = 0; d < 3; ++d) {
-      auto n = setup.n_high;
-      n[d] = setup.n_exact[d];
-      s += rule_points(n);
-    }
-    return s;
-  }();
-  constexpr int kMaxDepth = 52;  // halvings of a cell per direction: below that, rounding rules
-  for (int round = 0; round < 10000; ++round) {
-    double volume_sum = 0.0, error_sum = 0.0;
-    for (const Region& r : regions) volume_sum += r.value[0], error_sum += r.error;
-    const double target = options.relative_tolerance * std::abs(volume_sum);
-    if (error_sum <= target) break;
-    std::vector<std::size_t> order;
-    for (std::size_t i = 0; i < regions.size(); ++i)
-      if (!regions[i].final && regions[i].error > 0.0) order.push_back(i);
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return regions[a].error > regions[b].error; });
-    // Split the fewest regions whose errors make up the excess over half the target.
-    const double excess = error_sum - 0.5 * target;
-    double picked_error = 0.0;
-    std::vector<std::size_t> parents;
-    std::int64_t reserved = 0;  // upper bound of the points this round will take
-    for (std::size_t i : order) {
-      if (picked_error >= excess) break;
-      const Region& r = regions[i];
-      if (r.depth[0] >= kMaxDepth && r.depth[1] >= kMaxDepth && r.depth[2] >= kMaxDepth) continue;
-      const std::int64_t cost = direction_cost + 8 * child_cost;
-      if (result.quadrature_points + reserved + cost > options.max_quadrature_points) break;
-      reserved += cost;
-      picked_error += r.error;
-      parents.push_back(i);
-    }
-    for_each_index(parents.size(), options.parallel, [&](std::size_t k) { direction_errors(setup, regions[parents[k]]); });
-    std::vector<Region> children;
-    for (std::size_t i : parents) {
-      Region& r = regions[i];
-      result.quadrature_points += r.points;  // the direction indicators
-      r.points = 0;
-      std::array<bool, 3> split{};
-      double top = 0.0;
-      for (std::size_t d = 0; d < 3; ++d)
-        if (r.depth[d] < kMaxDepth) top = std::max(top, r.direction_error[d]);
-      for (std::size_t d = 0; d < 3; ++d) split[d] = r.depth[d] < kMaxDepth && r.direction_error[d] >= 0.1 * top;
-      for (int mask = 0; mask < (1 << 3); ++mask) {
-        bool valid = true;
-        Region child;
-        child.cell = r.cell;
-        child.depth = r.depth;
-        for (std::size_t d = 0; d < 3; ++d) {
-          const bool upper = (mask >> d) & 1;
-          if (!split[d]) {
-            if (upper) valid = false;
-            child.lo[d] = r.lo[d];
-            child.hi[d] = r.hi[d];
-            continue;
-          }
-          const double mid = 0.5 * (r.lo[d] + r.hi[d]);
-          child.lo[d] = upper ? mid : r.lo[d];
-          child.hi[d] = upper ? r.hi[d] : mid;
-          ++child.depth[d];
-        }
-        if (valid) children.push_back(child);
+      const bool upper = (mask >> d) & 1;
+      if (!split[d]) {
+        if (upper) valid = false;
+        child.lo[d] = r.lo[d];
+        child.hi[d] = r.hi[d];
+        continue;
       }
+      const double mid = 0.5 * (r.lo[d] + r.hi[d]);
+      child.lo[d] = upper ? mid : r.lo[d];
+      child.hi[d] = upper ? r.hi[d] : mid;
+      ++child.depth[d];
     }
-    if (parents.empty()) {
-      result.converged = false;
-      break;
-    }
-    for_each_index(children.size(), options.parallel, [&](std::size_t c) { evaluate(setup, children[c]); });
-    for (const Region& c : children) result.quadrature_points += c.points;
-    // Replace the parents (in place, keeping the order deterministic) and append the rest.
-    std::vector<bool> is_parent(regions.size(), false);
-    for (std::size_t i : parents) is_parent[i] = true;
-    std::vector<Region> next;
-    next.reserve(regions.size() + children.size());
-    for (std::size_t i = 0; i < regions.size(); ++i)
-      if (!is_parent[i]) next.push_back(regions[i]);
-    for (Region& c : children) next.push_back(c);
-    regions = std::move(next);
+    if (valid) children.push_back(child);
   }
+}
 
-  // Totals.
+enum class Refinement { Converged, Stuck, Continue };
+
+// One round of adaptive refinement: split the regions with the largest error estimates (in the
+// directions whose indicators dominate) unless the summed estimate meets the tolerance already
+// or the budget of quadrature points allows no split.
+Refinement refine_once(const Setup& setup, const MassPropertiesOptions& options, std::vector<Region>& regions,
+                       MassProperties& result) {
+  const std::int64_t child_cost = (setup.rational ? 0 : rule_points(setup.n_exact)) + rule_points(setup.n_high) + rule_points(setup.n_exact);
+  std::int64_t direction_cost = rule_points(setup.n_high);
+  for (std::size_t d = 0; d < 3; ++d) {
+    auto n = setup.n_high;
+    n[d] = setup.n_exact[d];
+    direction_cost += rule_points(n);
+  }
+  double volume_sum = 0.0, error_sum = 0.0;
+  for (const Region& r : regions) volume_sum += r.value[0], error_sum += r.error;
+  const double target = options.relative_tolerance * std::abs(volume_sum);
+  if (error_sum <= target) return Refinement::Converged;
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < regions.size(); ++i)
+    if (!regions[i].final && regions[i].error > 0.0) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return regions[a].error > regions[b].error; });
+  // Split the fewest regions whose errors make up the excess over half the target.
+  const double excess = error_sum - 0.5 * target;
+  double picked_error = 0.0;
+  std::vector<std::size_t> parents;
+  std::int64_t reserved = 0;  // upper bound of the points this round will take
+  for (std::size_t i : order) {
+    if (picked_error >= excess) break;
+    const Region& r = regions[i];
+    if (r.depth[0] >= kMaxDepth && r.depth[1] >= kMaxDepth && r.depth[2] >= kMaxDepth) continue;
+    const std::int64_t cost = direction_cost + 8 * child_cost;
+    if (result.quadrature_points + reserved + cost > options.max_quadrature_points) break;
+    reserved += cost;
+    picked_error += r.error;
+    parents.push_back(i);
+  }
+  for_each_index(parents.size(), options.parallel, [&](std::size_t k) { direction_errors(setup, regions[parents[k]]); });
+  std::vector<Region> children;
+  for (std::size_t i : parents) {
+    Region& r = regions[i];
+    result.quadrature_points += r.points;  // the direction indicators
+    r.points = 0;
+    split_region(r, children);
+  }
+  if (parents.empty()) return Refinement::Stuck;
+  for_each_index(children.size(), options.parallel, [&](std::size_t c) { evaluate(setup, children[c]); });
+  for (const Region& c : children) result.quadrature_points += c.points;
+  // Replace the parents (in place, keeping the order deterministic) and append the rest.
+  std::vector<bool> is_parent(regions.size(), false);
+  for (std::size_t i : parents) is_parent[i] = true;
+  std::vector<Region> next;
+  next.reserve(regions.size() + children.size());
+  for (std::size_t i = 0; i < regions.size(); ++i)
+    if (!is_parent[i]) next.push_back(regions[i]);
+  for (Region& c : children) next.push_back(c);
+  regions = std::move(next);
+  return Refinement::Continue;
+}
+
+// Volume, centroid and inertia from the regions' integrals, summed without drift.
+void add_totals(const Setup& setup, const std::vector<Region>& regions, const MassPropertiesOptions& options, MassProperties& result) {
   std::array<CompensatedSum, kQ> sums;
   CompensatedSum error_sum;
   for (const Region& r : regions) {
@@ -445,6 +447,37 @@ MassProperties mass_properties(const BSplineVolume& volume, const MassProperties
     result.inertia.setConstant(nan);
     result.estimated_relative_error = error_sum.value() > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
   }
+}
+
+}  // namespace
+
+MassProperties mass_properties(const BSplineVolume& volume, const MassPropertiesOptions& options) {
+  if (volume.dimension() != 3)
+    throw InvalidInput("mass properties need a volume in R^3, got one in R^" + std::to_string(volume.dimension()));
+  if (options.extra_points < 1) throw InvalidInput("mass properties: extra_points must be >= 1");
+
+  Setup setup;
+  setup.rational = volume.is_rational();
+  set_reference(volume, setup);
+  add_rules(volume, options.extra_points, setup);
+  add_knot_cells(volume, options.parallel, setup);
+  std::vector<Region> regions = initial_regions(setup, options.parallel);
+
+  MassProperties result;
+  result.knot_cells = static_cast<int>(setup.cells.size());
+  for (const Region& r : regions) {
+    result.folded_cells += r.folded ? 1 : 0;
+    result.quadrature_points += r.points;
+  }
+  for (int round = 0; round < 10000; ++round) {
+    const Refinement step = refine_once(setup, options, regions, result);
+    if (step == Refinement::Converged) break;
+    if (step == Refinement::Stuck) {
+      result.converged = false;
+      break;
+    }
+  }
+  add_totals(setup, regions, options, result);
   return result;
 }
 

@@ -1,7 +1,6 @@
 #include "volspline/analysis/scalar_fields.h"
 
-#include <Eigen/Geometry>
-
+#include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/attribute_spline.h"
 
@@ -54,11 +53,7 @@ std::vector<double> evaluate_scalar_field(const BSplineVolume& volume, const Sca
         throw InvalidInput("the Jacobian needs control points in R^3, got " + std::to_string(volume.dimension()) + " coordinates");
       // Order 1 gives the point and then the three first partials (derivative_multi_indices).
       const std::vector<double> d = volume.evaluate_points(t, 1);
-      for (std::size_t i = 0; i < parameters.size(); ++i) {
-        const double* p = d.data() + 12 * i;
-        const Eigen::Vector3d du(p[3], p[4], p[5]), dv(p[6], p[7], p[8]), dw(p[9], p[10], p[11]);
-        values[i] = du.dot(dv.cross(dw));
-      }
+      for (std::size_t i = 0; i < parameters.size(); ++i) values[i] = jacobian_determinant(d.data() + 12 * i);
       return values;
     }
     case ScalarKind::Attribute: {

@@ -1,6 +1,7 @@
 #include "volspline/boxspline/blend_examples.h"
 
 #include "volspline/boxspline/zero_set.h"
+#include "volspline/mesh/parts.h"
 
 namespace volspline {
 
@@ -51,11 +52,11 @@ SceneNode capped_cylinder(const Eigen::Vector3d& centre, const Eigen::Vector3d& 
                    {cylinder(centre, a, radius), plane(centre + half_length * a, a), plane(centre - half_length * a, -a)});
 }
 
-TriangleMesh part_only(const TriangleMesh& mesh, int part) {
+TriangleMesh part_only(const TriangleMesh& mesh, Part part) {
   TriangleMesh out;
   std::vector<int> index(mesh.num_vertices(), -1);
   for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-    if (mesh.parts[t] != part) continue;
+    if (mesh.parts[t] != part_number(part)) continue;
     std::array<int, 3> tri{};
     for (int k = 0; k < 3; ++k) {
       const int v = mesh.triangles[t][k];
@@ -163,7 +164,7 @@ std::vector<BlendFigure> paper_blend_figures() {
   const auto& [lo4, hi4] = *fig4.domain;
   figures.push_back({"blend-fig4a", "Fig. 4a: the torus primitive", implicit_zero_set(fig4.root.children[0], lo4, hi4, 0.05)});
   const TriangleMesh joined = scene_zero_set(fig4, {.levels = 2, .method = ZeroSetMethod::Control}).mesh;
-  figures.push_back({"blend-fig4b", "Fig. 4b: the box-spline part of the join of two tori", part_only(joined, kSplineSurfacePart)});
+  figures.push_back({"blend-fig4b", "Fig. 4b: the box-spline part of the join of two tori", part_only(joined, Part::BlendSpline)});
   figures.push_back({"blend-fig4c", "Fig. 4c: the complete joined object (box spline highlighted, tori outside)", joined});
   return figures;
 }

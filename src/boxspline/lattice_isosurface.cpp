@@ -53,6 +53,17 @@ bool inside(double v) { return v < 0.0; }
 }  // namespace
 
 TriangleMesh march_tetrahedra(const TetrahedralGrid& grid) {
+  const std::size_t cubes = static_cast<std::size_t>(grid.cells[0]) * grid.cells[1] * grid.cells[2];
+  if (!grid.cube_parts.empty() && grid.cube_parts.size() != cubes) {
+    throw InvalidInput("expected one part per cube (" + std::to_string(cubes) + "), got " + std::to_string(grid.cube_parts.size()));
+  }
+  std::size_t expected_values = 1;
+  for (int d = 0; d < 3; ++d) {
+    expected_values *= static_cast<std::size_t>(grid.layout == TetrahedralGrid::Layout::AllNodes ? 2 * grid.cells[d] + 1 : grid.cells[d] + 1);
+  }
+  if (grid.values.size() != expected_values) {
+    throw InvalidInput("expected " + std::to_string(expected_values) + " grid values for the layout, got " + std::to_string(grid.values.size()));
+  }
   static const std::array<Tetrahedron, 24> tetrahedra = cube_tetrahedra();
   // Surface vertices are made once per partition edge, keyed by the doubled-grid node indices
   // of its ends (mesh/marching_tetrahedra.h), so the mesh is welded by construction.
@@ -100,9 +111,9 @@ TriangleMesh march_tetrahedra(const TetrahedralGrid& grid) {
               }
           if (negatives == 0 || negatives == 15) continue;
         }
-        const int part = grid.cube_parts.empty()
-                             ? 6
-                             : grid.cube_parts[static_cast<std::size_t>(a) +
+        const Part part = grid.cube_parts.empty()
+                              ? Part::BlendSpline
+                              : grid.cube_parts[static_cast<std::size_t>(a) +
                                                grid.cells[0] * (static_cast<std::size_t>(b) + grid.cells[1] * static_cast<std::size_t>(c))];
         for (const Tetrahedron& tet : tetrahedra) {
           double v[4];
@@ -122,7 +133,7 @@ TriangleMesh march_tetrahedra(const TetrahedralGrid& grid) {
           }
           marching.add_tetrahedron_oriented_by_corners(samples);
         }
-        parts.resize(marching.triangles().size(), part);
+        parts.resize(marching.triangles().size(), part_number(part));
       }
 
   TriangleMesh mesh;

@@ -5,9 +5,9 @@
 #include <map>
 #include <string>
 
-#include "volspline/core/conventions.h"
 #include "volspline/core/error.h"
 #include "volspline/mesh/mesh_checks.h"
+#include "volspline/mesh/parts.h"
 
 namespace volspline {
 
@@ -43,9 +43,10 @@ TriangleMesh tessellate_faces(const BSplineVolume& volume, const FaceTessellatio
 
   TriangleMesh mesh;
   std::map<std::array<double, 3>, int> vertex_of;  // weld by parameter: faces share edge samples
-  for (int part = 0; part < 6; ++part) {
-    const int fixed = part / 2;                 // direction held constant (conventions.h)
-    const bool at_max = part % 2 == 1;
+  for (int face = 0; face < 6; ++face) {
+    const int fixed = face / 2;  // direction held constant
+    const bool at_max = face % 2 == 1;
+    const Part part = face_part(fixed, at_max);
     const int a = (fixed + 1) % 3, b = (fixed + 2) % 3;  // cyclic: (a, b, fixed) is right-handed
     auto grid = samples;
     const double value = at_max ? volume.domain_max(fixed) : volume.domain_min(fixed);

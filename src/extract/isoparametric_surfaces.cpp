@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "volspline/core/conventions.h"
 #include "volspline/core/error.h"
+#include "volspline/mesh/parts.h"
 #include "volspline/core/format.h"
 #include "volspline/extract/face_tessellation.h"
 
@@ -57,7 +57,7 @@ TriangleMesh isoparametric_surface(const BSplineVolume& volume, int direction, d
       t[b] = sb[j];
       mesh.add_vertex(Eigen::Vector3d(points[3 * linear], points[3 * linear + 1], points[3 * linear + 2]), t);
     }
-  const int part = static_cast<int>(Part::IsoU) + direction;
+  const Part part = isoparametric_part(direction);
   for (std::size_t j = 0; j + 1 < sb.size(); ++j)
     for (std::size_t i = 0; i + 1 < na; ++i) {
       const int v00 = static_cast<int>(i + na * j), v10 = v00 + 1;

@@ -9,8 +9,8 @@
 
 #include <Eigen/Geometry>
 
-#include "volspline/core/conventions.h"
 #include "volspline/core/error.h"
+#include "volspline/mesh/parts.h"
 #include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/marching_tetrahedra.h"
 
@@ -143,7 +143,7 @@ void slice_one(const BSplineVolume& volume, const SampledVolume& grid, const Pla
   for (const auto& t : marching.triangles()) {
     const int a = index[static_cast<std::size_t>(t[0])], b = index[static_cast<std::size_t>(t[1])],
               c = index[static_cast<std::size_t>(t[2])];
-    if (a != b && b != c && a != c) mesh.add_triangle(a, b, c, static_cast<int>(Part::Slice));
+    if (a != b && b != c && a != c) mesh.add_triangle(a, b, c, Part::Slice);
   }
 }
 

@@ -8,10 +8,10 @@
 #include <set>
 #include <utility>
 
-#include <Eigen/Geometry>
 #include <pugixml.hpp>
 
 #include "text_numbers.h"
+#include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
@@ -154,10 +154,7 @@ void write_object(Arrays& a, const TensorSpline<D>& spline, const ModelObject& o
                    (piece.domain_max(static_cast<int>(d)) - piece.domain_min(static_cast<int>(d))) * ijk[d] / degrees[d];
           }
           piece.evaluate_derivatives(t, 1, derivatives.data());
-          const auto column_of = [&](std::size_t alpha) {
-            return Eigen::Vector3d(derivatives[alpha * m], derivatives[alpha * m + 1], derivatives[alpha * m + 2]);
-          };
-          append(a.jacobian, column_of(1).dot(column_of(2).cross(column_of(3))));
+          append(a.jacobian, jacobian_determinant(derivatives.data(), static_cast<std::ptrdiff_t>(m)));
         }
       }
       a.connectivity += std::to_string(a.num_points++) + ' ';

@@ -15,6 +15,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/mesh/parts.h"
 
 namespace volspline {
 
@@ -122,7 +123,7 @@ TriangleMesh parse_obj_text(std::string_view text, const std::string& source) {
     std::size_t line;
   };
   std::vector<ForwardReference> forward;  // positive indices beyond the vertices read so far
-  int part = 0;
+  int part = kUnnamedPartNumber;
   std::size_t line_number = 0;
   std::size_t position = 0;
   std::vector<int> face;
@@ -180,7 +181,7 @@ TriangleMesh parse_obj_text(std::string_view text, const std::string& source) {
       // would need a real triangulation, which OBJ exporters of quads and n-gons rarely need.
       for (std::size_t i = 1; i + 1 < face.size(); ++i) mesh.add_triangle(face[0], face[i], face[i + 1], part);
     } else if (keyword == "g") {
-      part = 0;
+      part = kUnnamedPartNumber;
       long long n = 0;
       if (words.size() == 2 && words[1].starts_with("part_") && parse_integer(words[1].substr(5), n) && n >= INT_MIN &&
           n <= INT_MAX) {
@@ -506,7 +507,7 @@ TriangleMesh parse_ply_bytes(std::string_view bytes, const std::string& source) 
         }
         mesh.add_vertex(position, parameter);
       } else if (is_face) {
-        int part = 0;
+        int part = kUnnamedPartNumber;
         if (part_property >= 0) {
           const double value = values[static_cast<std::size_t>(part_property)];
           if (value < INT_MIN || value > INT_MAX) fail(source, start + " (" + name + ")", "part out of range");
@@ -589,7 +590,7 @@ TriangleMesh parse_binary_stl(std::string_view bytes, const std::string& source)
       for (int i = 0; i < 3; ++i) p[i] = load<float>(bytes.data() + offset + 12 + 12 * v + 4 * i, false);
       corner[static_cast<std::size_t>(v)] = welder.add(p, source, where);
     }
-    mesh.add_triangle(corner[0], corner[1], corner[2], 0);
+    mesh.add_triangle(corner[0], corner[1], corner[2], kUnnamedPartNumber);
   }
   return mesh;
 }
@@ -642,7 +643,7 @@ TriangleMesh parse_ascii_stl(std::string_view text, const std::string& source) {
     }
     if (corners.size() < 3) fail(source, line_at(tokens.line()), "a facet needs at least 3 vertices, got " + std::to_string(corners.size()));
     expect("endfacet");
-    for (std::size_t i = 1; i + 1 < corners.size(); ++i) mesh.add_triangle(corners[0], corners[i], corners[i + 1], 0);
+    for (std::size_t i = 1; i + 1 < corners.size(); ++i) mesh.add_triangle(corners[0], corners[i], corners[i + 1], kUnnamedPartNumber);
   }
   return mesh;
 }

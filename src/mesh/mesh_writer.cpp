@@ -18,7 +18,7 @@
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/mesh/mesh_checks.h"
-#include "volspline/mesh/part_colors.h"
+#include "volspline/mesh/parts.h"
 
 namespace volspline {
 
@@ -72,6 +72,17 @@ std::string lowercase_extension(const std::filesystem::path& path) {
   return extension;
 }
 
+// What the face property `part` means, from the part table: "comment part: 0 = u_min, ...".
+std::string ply_part_comment() {
+  std::string out = "comment part:";
+  for (const PartInfo& info : kParts) {
+    out += ' ' + std::to_string(part_number(info.part)) + " = ";
+    out += info.name;
+    if (&info != &kParts.back()) out += ',';
+  }
+  return out + '\n';
+}
+
 }  // namespace
 
 MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
@@ -104,7 +115,7 @@ std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<do
   out += "ply\n";
   out += ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n";
   out += "comment volspline boundary mesh: (u, v, w) are the parameters of each vertex\n";
-  out += "comment part: 0..5 = faces u=min, u=max, v=min, v=max, w=min, w=max; 6 = det J = 0\n";
+  out += ply_part_comment();
   out += "element vertex " + std::to_string(mesh.num_vertices()) + "\n";
   for (const char* name : {"x", "y", "z", "u", "v", "w"}) {
     out += "property double ";
@@ -230,7 +241,7 @@ std::string stl_bytes(const TriangleMesh& mesh, bool ascii) {
 
 namespace {
 
-/// glTF colours are linear (glTF 2.0, "Meshes": COLOR_0), part_color's are sRGB.
+/// glTF colours are linear (glTF 2.0, "Meshes": COLOR_0), part_color's are sRGB (mesh/parts.h).
 double linear_from_srgb(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }

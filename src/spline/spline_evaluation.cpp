@@ -138,6 +138,28 @@ struct LocalEvaluation {
   }
 };
 
+// The partial derivatives of a rational spline R = A / w from those of its homogeneous form
+// (A, w), by the quotient rule in Leibniz form: A_alpha = sum_{beta <= alpha} C(alpha, beta)
+// w_beta R_{alpha-beta}, solved for R_alpha in the order of the table (lower multi-indices first;
+// Lasser 1994 eq. 4-5 give the homogeneous form). homogeneous(a) points to the k + 1
+// numbers (A, w) of multi-index a, rational(a) to the k numbers R_a it fills.
+template <int D, class Homogeneous, class Rational>
+void divide_by_weight(const detail::DerivativeTable<D>& table, int k, Homogeneous homogeneous, Rational rational) {
+  const double w0 = homogeneous(0)[k];
+  if (!(w0 > 0.0)) throw Error("internal: rational denominator vanished inside the domain");
+  for (std::size_t a = 0; a < table.alphas.size(); ++a) {
+    double* r = rational(a);
+    const double* h = homogeneous(a);
+    for (int c = 0; c < k; ++c) r[c] = h[c];
+    for (const auto& term : table.leibniz[a]) {
+      const double wb = term.binomial * homogeneous(static_cast<std::size_t>(term.beta))[k];
+      const double* lower = rational(static_cast<std::size_t>(term.alpha_minus));
+      for (int c = 0; c < k; ++c) r[c] -= wb * lower[c];
+    }
+    for (int c = 0; c < k; ++c) r[c] /= w0;
+  }
+}
+
 thread_local std::vector<double> tl_scratch;
 thread_local std::vector<double> tl_grid_scratch[3];
 
@@ -327,20 +349,9 @@ void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double
     std::memcpy(out, results, sizeof(double) * n_alpha * static_cast<std::size_t>(k));
     return;
   }
-  // Quotient rule for A / w by Leibniz: A_alpha = sum_{beta <= alpha} C(alpha, beta) w_beta R_{alpha-beta}.
-  const double w0 = results[k];
-  if (!(w0 > 0.0)) throw Error("internal: rational denominator vanished inside the domain");
-  for (std::size_t a = 0; a < n_alpha; ++a) {
-    double* r = out + a * static_cast<std::size_t>(k);
-    const double* h = results + a * static_cast<std::size_t>(C);
-    for (int c = 0; c < k; ++c) r[c] = h[c];
-    for (const auto& term : table.leibniz[a]) {
-      const double wb = term.binomial * results[term.beta * C + k];
-      const double* lower = out + term.alpha_minus * k;
-      for (int c = 0; c < k; ++c) r[c] -= wb * lower[c];
-    }
-    for (int c = 0; c < k; ++c) r[c] /= w0;
-  }
+  divide_by_weight(
+      table, k, [&](std::size_t a) { return results + a * static_cast<std::size_t>(C); },
+      [&](std::size_t a) { return out + a * static_cast<std::size_t>(k); });
 }
 
 template <int D>
@@ -453,21 +464,9 @@ void TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>& sa
   if (!rational) return;
 
   for (std::size_t pt = 0; pt < num_points; ++pt) {
-    auto H = [&](std::size_t a) { return &homog[(a * num_points + pt) * static_cast<std::size_t>(C)]; };
-    auto R = [&](std::size_t a) { return &out[(a * num_points + pt) * static_cast<std::size_t>(k)]; };
-    const double w0 = H(0)[k];
-    if (!(w0 > 0.0)) throw Error("internal: rational denominator vanished inside the domain");
-    for (std::size_t a = 0; a < n_alpha; ++a) {
-      double* r = R(a);
-      const double* h = H(a);
-      for (int c = 0; c < k; ++c) r[c] = h[c];
-      for (const auto& term : table.leibniz[a]) {
-        const double wb = term.binomial * H(static_cast<std::size_t>(term.beta))[k];
-        const double* lower = R(static_cast<std::size_t>(term.alpha_minus));
-        for (int c = 0; c < k; ++c) r[c] -= wb * lower[c];
-      }
-      for (int c = 0; c < k; ++c) r[c] /= w0;
-    }
+    divide_by_weight(
+        table, k, [&](std::size_t a) { return &homog[(a * num_points + pt) * static_cast<std::size_t>(C)]; },
+        [&](std::size_t a) { return &out[(a * num_points + pt) * static_cast<std::size_t>(k)]; });
   }
 }
 

@@ -186,7 +186,7 @@ TEST(ZeroSet, LocalityUsesPrimitivesOutsideTheBoxWithoutCracks) {
                                z.mesh.positions[z.mesh.triangles[t][2]]) / 3.0;
     const bool in_box = (c.array() >= scene.box_min.array() - z.stats.grid_spacing).all() &&
                         (c.array() <= scene.box_max.array() + z.stats.grid_spacing).all();
-    if (z.mesh.parts[t] == kSplineSurfacePart) {
+    if (z.mesh.parts[t] == part_number(Part::BlendSpline)) {
       ++spline;
       EXPECT_TRUE(in_box);
     } else {

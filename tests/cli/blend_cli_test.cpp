@@ -2,6 +2,7 @@
 // a message naming the file and the JSON path.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "volspline/io/atomic_file.h"
 #include "volspline/mesh/mesh_checks.h"
 #include "volspline/mesh/mesh_reader.h"
+#include "volspline/mesh/parts.h"
 
 namespace volspline {
 namespace {
@@ -71,6 +73,70 @@ TEST(BlendCli, WritesBinaryGltfWithTheTrianglesOfThePly) {
   for (int d = 0; d < 3; ++d) {
     EXPECT_NEAR(lo[static_cast<std::size_t>(d)], ply_lo[d], 1e-5);
     EXPECT_NEAR(hi[static_cast<std::size_t>(d)], ply_hi[d], 1e-5);
+  }
+}
+
+// The README and `blend --help` promise: the spline surface orange, the primitives outside the box
+// grey. Read back from the .glb (COLOR_0, linear RGB) without the part table: grey is r = g = b,
+// orange is red well above green above blue. Triangles well inside the box must be orange, those
+// well outside grey (the primitives were once drawn in the blue of the u-isoparametric surfaces).
+TEST(BlendCli, GltfColoursTheSplineOrangeAndThePrimitivesOutsideTheBoxGrey) {
+  test::TemporaryDirectory dir;
+  const std::string scene = std::string(VOLSPLINE_SOURCE_DIR) + "/examples/scenes/scene-two-tori.json";
+  for (const char* out : {"s.ply", "s.glb"})
+    ASSERT_EQ(test::run_cli("blend " + scene + " -o " + (dir / out).string() + " --levels 1", dir.path()).code, 0) << out;
+  const Eigen::Vector3d box_min(-0.75, -1.2, -0.6), box_max(0.75, 1.2, 0.6);  // the scene's box
+  const double margin = 0.15;                                                   // the lattice spacing
+
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string error, warning;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, (dir / "s.glb").string())) << error;
+  const tinygltf::Primitive& primitive = model.meshes.at(0).primitives.at(0);
+  const auto floats = [&](int index, std::size_t components) {
+    const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(index));
+    const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
+    EXPECT_EQ(accessor.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+    std::vector<float> values(accessor.count * components);
+    std::memcpy(values.data(), model.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + view.byteOffset + accessor.byteOffset,
+                values.size() * sizeof(float));
+    return values;
+  };
+  const std::vector<float> positions = floats(primitive.attributes.at("POSITION"), 3);
+  const std::vector<float> colours = floats(primitive.attributes.at("COLOR_0"), 3);
+  const tinygltf::Accessor& index_accessor = model.accessors.at(static_cast<std::size_t>(primitive.indices));
+  ASSERT_EQ(index_accessor.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+  const tinygltf::BufferView& index_view = model.bufferViews.at(static_cast<std::size_t>(index_accessor.bufferView));
+  std::vector<std::uint32_t> indices(index_accessor.count);
+  std::memcpy(indices.data(),
+              model.buffers.at(static_cast<std::size_t>(index_view.buffer)).data.data() + index_view.byteOffset + index_accessor.byteOffset,
+              indices.size() * sizeof(std::uint32_t));
+
+  const auto grey = [](const Eigen::Vector3d& c) { return std::abs(c[0] - c[1]) < 1e-6 && std::abs(c[1] - c[2]) < 1e-6; };
+  const auto orange = [](const Eigen::Vector3d& c) { return c[0] > 0.5 && c[0] > c[1] + 0.2 && c[1] > c[2]; };
+  std::size_t inside = 0, outside = 0;
+  for (std::size_t t = 0; 3 * t < indices.size(); ++t) {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero(), colour = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t g = indices[3 * t + k];
+      centre += Eigen::Vector3d(positions[3 * g], positions[3 * g + 1], positions[3 * g + 2]) / 3.0;
+      colour = Eigen::Vector3d(colours[3 * g], colours[3 * g + 1], colours[3 * g + 2]);
+    }
+    if ((centre.array() > box_min.array() + margin).all() && (centre.array() < box_max.array() - margin).all()) {
+      ++inside;
+      EXPECT_TRUE(orange(colour)) << "triangle " << t << " inside the box has colour " << colour.transpose();
+    } else if ((centre.array() < box_min.array() - margin).any() || (centre.array() > box_max.array() + margin).any()) {
+      ++outside;
+      EXPECT_TRUE(grey(colour)) << "triangle " << t << " outside the box has colour " << colour.transpose();
+    }
+  }
+  EXPECT_GT(inside, 100u);
+  EXPECT_GT(outside, 100u);
+
+  // The .ply carries the blend's own part numbers, nothing of the solid-boundary parts.
+  const TriangleMesh ply = read_mesh(dir / "s.ply");
+  for (const int part : ply.parts) {
+    EXPECT_TRUE(part == part_number(Part::BlendSpline) || part == part_number(Part::BlendPrimitive)) << part;
   }
 }
 

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "support/test_splines.h"
-#include "volspline/core/conventions.h"
+#include "volspline/mesh/parts.h"
 #include "volspline/core/error.h"
 #include "volspline/extract/face_tessellation.h"
 

@@ -9,7 +9,7 @@
 
 #include "support/jacobian_test_volumes.h"
 #include "volspline/construct/primitives.h"
-#include "volspline/core/conventions.h"
+#include "volspline/mesh/parts.h"
 #include "volspline/core/error.h"
 #include "volspline/mesh/mesh_checks.h"
 

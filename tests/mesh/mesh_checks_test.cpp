@@ -183,7 +183,7 @@ TEST(Weld, DropsTrianglesThatCollapseAndVerticesNobodyUses) {
   const int b = mesh.add_vertex({2, 1e-8, 0}, kNoParameter);
   const int c = mesh.add_vertex({2, 0, 1}, kNoParameter);
   mesh.add_vertex({5, 5, 5}, kNoParameter);
-  mesh.add_triangle(a, b, c, 6);
+  mesh.add_triangle(a, b, c, Part::JacobianZero);
   weld_by_position(mesh, 1e-6);
   EXPECT_EQ(mesh.num_triangles(), 12u);
   EXPECT_EQ(mesh.num_vertices(), 8u);

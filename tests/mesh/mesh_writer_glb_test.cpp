@@ -12,7 +12,7 @@
 #include "support/test_meshes.h"
 #include "volspline/core/error.h"
 #include "volspline/mesh/mesh_writer.h"
-#include "volspline/mesh/part_colors.h"
+#include "volspline/mesh/parts.h"
 
 namespace volspline {
 namespace {

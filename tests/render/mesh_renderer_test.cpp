@@ -182,7 +182,7 @@ TEST(RenderMesh, OpenAndInsideOutMeshesAreShadedOnBothSides) {
 TEST(RenderMesh, NothingToSeeGivesTheBackground) {
   TriangleMesh point;
   point.add_vertex({1, 2, 3}, kNoParameter);
-  point.add_triangle(0, 0, 0, 6);
+  point.add_triangle(0, 0, 0, Part::JacobianZero);
   for (const TriangleMesh& mesh : {TriangleMesh{}, point}) {
     const Image opaque = render_mesh(mesh, small());
     ASSERT_EQ(opaque.rgba.size(), 4u * 160 * 120);

@@ -56,10 +56,11 @@ struct MassProperties {
 /// the rule has ceil(5p/2) x ceil(5q/2) x ceil(5r/2) points, which integrates x x^T |J| exactly
 /// (degree 5p-1 in u, ...) as long as J keeps its sign in the cell. Cells where J changes sign,
 /// and all cells of a rational volume, are refined adaptively (see MassPropertiesOptions).
-/// \throw InvalidInput if the volume's dimension is not 3.
+/// \throw InvalidInput if the volume's dimension is not 3 or options.extra_points < 1.
 MassProperties mass_properties(const BSplineVolume& volume, const MassPropertiesOptions& options = {});
 
 /// The n-point Gauss-Legendre rule on [-1, 1]: nodes ascending, weights (n >= 1).
+/// \throw InvalidInput if n < 1.
 void gauss_legendre(int n, double* nodes, double* weights);
 
 }  // namespace volspline

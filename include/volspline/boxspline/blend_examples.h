@@ -2,7 +2,8 @@
 // The page of examples of Peters & Wittman 1995, built in code (`volspline demo` writes them):
 //  1a-c a cylinder intersection after zero, one and two subdivisions (control method);
 //  2a-c two primitives, their union (pointwise minimum, creased) and their smooth blend, the
-//       spline part highlighted (part 6) and the primitives outside the box (part 7);
+//       spline part highlighted (Part::BlendSpline) and the primitives outside the box
+//       (Part::BlendPrimitive, mesh/parts.h);
 //  3a-c various primitives blended: the primitives, their union, the blend;
 //  4a-c the join of two tori: the torus primitive, the box-spline part of the join, the whole
 //       joined object.

@@ -27,7 +27,8 @@ struct LatticeField {
   std::vector<double> coefficients;
 
   /// A field of `size` zero coefficients. \throw InvalidInput if the spacing is not positive and
-  /// finite, a size is below 5 (no domain) or the lattice has more than 2^28 points.
+  /// finite, a size is below 5 (no domain) or the lattice has more than kMaxLatticePoints (2^26)
+  /// points.
   LatticeField(const Eigen::Vector3d& origin, double spacing, std::array<int, 3> size);
   LatticeField() = default;
 
@@ -72,9 +73,10 @@ double evaluate_by_own_pieces(const LatticeField& field, const Eigen::Vector3d& 
 /// 2⁻⁴ ∏_ξ (1 + z^ξ)). The fine lattice has 2n − 4 points per axis, origin o + (3/4) h (the
 /// centred lattices are not nested: the fine points sit a quarter spacing off the coarse ones),
 /// and the same domain. Fine coefficients that would need coefficients beyond the coarse lattice
-/// are not produced. \throw InvalidInput if the result would be too large (see LatticeField).
+/// are not produced. \throw InvalidInput if the result would have more than kMaxLatticePoints
+/// points.
 LatticeField refine(const LatticeField& field);
-/// `levels` refinements.
+/// `levels` refinements. \throw InvalidInput if levels < 0, or as refine.
 LatticeField refine(const LatticeField& field, int levels);
 
 /// The exact values f(o + h (j + offset)) for every j whose point lies in the domain, where
@@ -95,7 +97,8 @@ void quasi_interpolate(LatticeField& field, const std::function<double(const Eig
 
 /// A lattice whose domain contains the box [lo, hi], with lattice points on lo + h Z³:
 /// origin lo − 2h, ceil((hi − lo)/h) + 5 points per axis, coefficients zero.
-/// \throw InvalidInput for an empty box or bad spacing, or a lattice that is too large.
+/// \throw InvalidInput for an empty box or bad spacing, or a lattice of more than
+/// kMaxLatticePoints points.
 LatticeField lattice_covering(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double spacing);
 
 /// Most lattice points a field may have (2^26, 512 MiB of coefficients).

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "volspline/mesh/parts.h"
 #include "volspline/mesh/triangle_mesh.h"
 
 namespace volspline {
@@ -31,10 +32,12 @@ struct TetrahedralGrid {
   /// AllNodes: (2 cells + 1) per axis values, x fastest, entries at edge midpoints ignored.
   /// CornersAveraged: (cells + 1) per axis corner values, x fastest.
   std::vector<double> values;
-  /// One mesh part per cube (x fastest), or empty for part 6 everywhere.
-  std::vector<std::int8_t> cube_parts;
+  /// The mesh part of each cube's triangles (x fastest), or empty for Part::BlendSpline
+  /// everywhere (mesh/parts.h).
+  std::vector<Part> cube_parts;
 
-  /// A grid of `cells` cubes with all values zero. \throw InvalidInput for a bad size.
+  /// A grid of `cells` cubes with all values zero. \throw InvalidInput if the spacing is not
+  /// positive and finite, an axis has no cube, or `values` would hold more than 2^27 numbers.
   TetrahedralGrid(const Eigen::Vector3d& origin, double spacing, std::array<int, 3> cells, Layout layout = Layout::AllNodes);
   TetrahedralGrid() = default;
 
@@ -62,6 +65,8 @@ struct TetrahedralGrid {
 /// set does not leave the grid. Triangles are counter-clockwise seen from the positive side.
 /// Vertex parameters are the positions; each triangle gets its cube's part. Non-finite values
 /// count as outside.
+/// \throw InvalidInput if cube_parts is neither empty nor one per cube, or `values` does not
+/// have the size of the layout.
 TriangleMesh march_tetrahedra(const TetrahedralGrid& grid);
 
 }  // namespace volspline

@@ -10,13 +10,14 @@
 //  * Exact: the same marching on the exact values of the spline at lattice points, face and
 //    cube centres of the K-times refined lattice, vertices by linear interpolation along the
 //    edges and, optionally, projected onto the zero set by Newton steps.
-// Triangles from cubes whose centre lies in the box get part 6 (the spline surface), the others
-// part 7 (the primitives).
+// Triangles from cubes whose centre lies in the box get Part::BlendSpline (the spline surface),
+// the others Part::BlendPrimitive (the primitives; mesh/parts.h).
 #include <optional>
 
 #include "volspline/boxspline/implicit_scene.h"
 #include "volspline/boxspline/lattice_field.h"
 #include "volspline/core/progress.h"
+#include "volspline/mesh/parts.h"
 #include "volspline/mesh/triangle_mesh.h"
 
 namespace volspline {
@@ -37,9 +38,6 @@ struct ZeroSetOptions {
   /// Null: nobody listens.
   Progress* progress = nullptr;
 };
-
-inline constexpr int kSplineSurfacePart = 6;
-inline constexpr int kPrimitiveSurfacePart = 7;
 
 struct ZeroSetStats {
   std::size_t vertices = 0, triangles = 0;
@@ -75,7 +73,8 @@ ZeroSet field_zero_set(const LatticeField& field, const Eigen::Vector3d& lo, con
                        const ZeroSetOptions& options);
 
 /// The zero set of the pointwise (CSG) function of `node` over [lo, hi], marched on a grid of
-/// the given spacing with exact values at all partition vertices; every triangle gets part 7.
+/// the given spacing with exact values at all partition vertices; every triangle gets
+/// Part::BlendPrimitive.
 /// \throw InvalidInput for an empty box, bad spacing or too many grid nodes.
 TriangleMesh implicit_zero_set(const SceneNode& node, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double spacing);
 

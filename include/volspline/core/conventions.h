@@ -14,26 +14,6 @@
 //   (Lasser 1994, eq. 4) has the coefficients (w x, w y, w z, w); a control point with w = 0 is a
 //   point at infinity whose stored coordinates are a direction d, with homogeneous coefficient
 //   (d, 0) (Lasser 1994, the paragraph after eq. 5).
-// * The six boundary faces of a volume are numbered as mesh parts 0..5:
-//   u = min, u = max, v = min, v = max, w = min, w = max. Part 6 is the implicit surface where the
-//   Jacobian determinant vanishes (Joy-Duchaineau 1999, Theorem 4.1). Looking inside a solid
-//   (Lasser 1994 §IV) adds parts 7..9 for isoparametric surfaces u, v, w = const and 10 for
-//   planar slices.
-namespace volspline {
-
-/// Mesh part numbers of the boundary of a trivariate solid.
-enum class Part : int {
-  UMin = 0,
-  UMax = 1,
-  VMin = 2,
-  VMax = 3,
-  WMin = 4,
-  WMax = 5,
-  JacobianZero = 6,
-  IsoU = 7,
-  IsoV = 8,
-  IsoW = 9,
-  Slice = 10,
-};
-
-}  // namespace volspline
+// * Every triangle of a mesh carries a part number: which boundary face of a volume it lies on,
+//   or the surface J = 0, an isoparametric surface, a slice, a box-spline blend's surface. The
+//   numbers, their names and colours are one table: `Part` and `kParts` in mesh/parts.h.

@@ -23,8 +23,8 @@ struct FaceTessellationOptions {
 /// the breakpoints, ascending, without repeats.
 std::vector<double> face_samples(const KnotVector& knots, int resolution);
 
-/// The six faces as one welded mesh (parts 0..5: u=min, u=max, v=min, v=max, w=min, w=max;
-/// per-vertex parameters). Vertices shared by two faces are one vertex: faces are sampled on
+/// The six faces as one welded mesh (parts Part::UMin..WMax of mesh/parts.h: u=min, u=max,
+/// v=min, v=max, w=min, w=max; per-vertex parameters). Vertices shared by two faces are one vertex: faces are sampled on
 /// common parameter values and welded by parameter. Triangles are oriented so that the enclosed
 /// volume is positive (outward normals, whatever the handedness of the parameterisation).
 /// For a volume whose faces are not degenerate the result is closed: every edge is shared by

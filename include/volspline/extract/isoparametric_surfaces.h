@@ -24,7 +24,8 @@ struct IsoparametricOptions {
 std::vector<double> isoparametric_values(const KnotVector& knots, int count);
 
 /// The surface where parameter `direction` (0 = u, 1 = v, 2 = w) equals `value`, as a grid of
-/// triangles with per-vertex parameters, part 7 + direction (Part::IsoU..IsoW).
+/// triangles with per-vertex parameters, part isoparametric_part(direction) (Part::IsoU..IsoW,
+/// mesh/parts.h).
 /// \throw InvalidInput if the direction is not 0..2, the value lies outside the domain, the
 /// resolution is < 1, or the control points are not in R^3.
 TriangleMesh isoparametric_surface(const BSplineVolume& volume, int direction, double value,

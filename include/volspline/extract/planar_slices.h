@@ -29,7 +29,7 @@ struct SliceOptions {
   int resolution = 32;
 };
 
-/// The slice of `volume` by `plane`: triangles in the plane, part 10 (Part::Slice), each vertex
+/// The slice of `volume` by `plane`: triangles in the plane, part Part::Slice, each vertex
 /// with its domain point as parameters. Empty if the plane misses the solid.
 /// \throw InvalidInput for a plane with a zero or non-finite normal, resolution < 1, or control
 /// points not in R^3.

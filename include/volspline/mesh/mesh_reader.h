@@ -21,24 +21,29 @@ namespace volspline {
 /// OBJ: `v x y z` (extra numbers such as w or colours are ignored), `f` with 3 or more vertices
 /// (triangulated as a fan from the first), each `i`, `i/t`, `i//n` or `i/t/n`, 1-based or
 /// negative (relative to the vertices read so far). `g part_N` sets the part of the following
-/// faces to N, as obj_bytes writes it; any other group, and no group, is part 0. Other
-/// statements (vt, vn, o, s, usemtl, mtllib, l, p, ...) are ignored. Parameters are (0, 0, 0).
+/// faces to N, as obj_bytes writes it; any other group, and no group, is part
+/// kUnnamedPartNumber (mesh/parts.h). Other statements (vt, vn, o, s, usemtl, mtllib, l, p, ...)
+/// are ignored. Parameters are (0, 0, 0).
+/// \throw InvalidInput naming `source` and the line if the text is not a valid OBJ mesh.
 TriangleMesh parse_obj(std::string_view bytes, const std::string& source);
 
 /// PLY 1.0, ascii, binary_little_endian or binary_big_endian. Element "vertex" needs x, y, z
 /// and may have u, v, w (the parameters, else 0); element "face" needs a list property
 /// vertex_indices (or vertex_index) of 3 or more vertices (fans), and may have an integer
-/// property part (else 0). Any scalar type (char/int8 ... double/float64) is accepted for any
-/// property; other elements and properties are skipped.
+/// property part (else kUnnamedPartNumber). Any scalar type (char/int8 ... double/float64) is
+/// accepted for any property; other elements and properties are skipped.
+/// \throw InvalidInput naming `source` and where if the bytes are not a valid PLY mesh.
 TriangleMesh parse_ply(std::string_view bytes, const std::string& source);
 
 /// STL, binary unless the file starts with "solid" and is not exactly the size a binary file
 /// with its declared triangle count would have (some binary writers begin the header with
 /// "solid" too). Identical positions are welded into one vertex (STL stores each triangle's
-/// corners separately); triangles are kept in file order, parts are 0, parameters (0, 0, 0).
+/// corners separately); triangles are kept in file order, parts are kUnnamedPartNumber,
+/// parameters (0, 0, 0).
+/// \throw InvalidInput naming `source` and where if the bytes are not a valid STL mesh.
 TriangleMesh parse_stl(std::string_view bytes, const std::string& source);
 
-/// The parser of `format`.
+/// The parser of `format`. \throw InvalidInput as that parser, or for a format without one.
 TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format, const std::string& source);
 
 /// Reads the mesh in `path`, in the format its extension names (mesh_format_from_path); errors

@@ -36,7 +36,8 @@ struct MeshWriteOptions {
 bool is_ply_property_name(const std::string& name);
 
 /// PLY 1.0, binary_little_endian unless `ascii`: vertices with double x, y, z, u, v, w (position
-/// and parameters) and faces with `list uchar int vertex_indices` and `int part`.
+/// and parameters) and faces with `list uchar int vertex_indices` and `int part` (the part
+/// number, mesh/parts.h; a header comment lists the table).
 /// With `scalars` (one per vertex) a further vertex property `double scalar_name` follows w.
 /// \throw InvalidInput if the mesh is malformed, the scalars are not one per vertex or the name
 /// is not a plain identifier.
@@ -53,7 +54,7 @@ std::string stl_bytes(const TriangleMesh& mesh, bool ascii = false);
 
 /// Binary glTF 2.0 (.glb, written with tinygltf): one mesh of indexed triangles with POSITION,
 /// NORMAL and COLOR_0 (single precision). Every triangle's corners carry the colour of its part
-/// (part_color of mesh/part_colors.h, converted from sRGB to glTF's linear colour space), so
+/// (part_color of mesh/parts.h, converted from sRGB to glTF's linear colour space), so
 /// a vertex shared by two parts is written once per part; normals are area-weighted averages
 /// over the triangles of the same part around a vertex, so the seams between parts stay sharp.
 /// Parameters are not written. With `vertex_colors` (sRGB, one per vertex) the corners carry

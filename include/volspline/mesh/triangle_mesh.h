@@ -1,10 +1,14 @@
 #pragma once
 // A triangle mesh that remembers where each vertex came from in parameter space and which part
-// of a solid's boundary each triangle belongs to (parts: see core/conventions.h).
+// of a solid's boundary each triangle belongs to. No member throws except std::bad_alloc; the
+// checks of a mesh's consistency are mesh/mesh_checks.h.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "volspline/mesh/parts.h"
 
 namespace volspline {
 
@@ -15,11 +19,15 @@ struct TriangleMesh {
   std::vector<Eigen::Vector3d> parameters;
   /// #F triangles, counter-clockwise seen from outside where the producer knows the outside.
   std::vector<std::array<int, 3>> triangles;
-  /// #F part tags (0..5 the faces u=min..w=max, 6 the implicit surface).
+  /// #F part numbers, one per triangle: the numbers of the part table (mesh/parts.h), or any
+  /// number a mesh file carried.
   std::vector<int> parts;
 
+  /// Appends a vertex; returns its index.
   int add_vertex(const Eigen::Vector3d& position, const Eigen::Vector3d& parameter);
+  /// Appends the triangle (a, b, c) of part number `part`; indices are not checked here.
   void add_triangle(int a, int b, int c, int part);
+  void add_triangle(int a, int b, int c, Part part) { add_triangle(a, b, c, part_number(part)); }
   /// Appends `other`, renumbering its vertices.
   void append(const TriangleMesh& other);
   std::size_t num_vertices() const { return positions.size(); }

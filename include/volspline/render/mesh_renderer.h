@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "volspline/mesh/part_colors.h"  // part_color, used by ColorMode::ByPart
+#include "volspline/mesh/parts.h"  // part_color, used by ColorMode::ByPart
 #include "volspline/mesh/triangle_mesh.h"
 #include "volspline/render/colormap.h"
 #include "volspline/render/image.h"
@@ -16,7 +16,7 @@
 namespace volspline {
 
 enum class ColorMode {
-  /// Each part its own colour (part_color).
+  /// Each part its own colour (part_color, the part table of mesh/parts.h).
   ByPart,
   /// Everything in RenderOptions::single_color.
   Single,
@@ -75,8 +75,8 @@ std::pair<double, double> scalar_range(const TriangleMesh& mesh, const RenderOpt
 
 /// Renders `mesh` as seen through a perspective camera fitted to it. A mesh with no visible
 /// triangles gives a picture of the background alone.
-/// \throw InvalidInput for a malformed mesh (validate_mesh) or options out of range, Error if
-/// Embree fails.
+/// \throw InvalidInput for a malformed mesh (validate_mesh), options out of range or, for
+/// ColorMode::Scalar, not one scalar per vertex; Error if Embree fails.
 Image render_mesh(const TriangleMesh& mesh, const RenderOptions& options = {});
 
 }  // namespace volspline
