@@ -117,7 +117,7 @@ void run_boundary(const BoundaryArguments& a) {
     mesh.append(b.mesh);
     const BoundaryStats& s = b.stats;
     stats["objects"].push_back(object_stats(i, s));
-    std::cout << "object " << i << ": " << s.cells_examined << " cells examined, " << s.cells_kept << " kept, " << s.triangles[6]
+    std::cout << "object " << i << ": " << s.cells_examined << " cells examined, " << s.cells_kept << " kept, " << s.triangles_of(Part::JacobianZero)
               << " implicit triangles, max |J| at implicit vertices " << std::setprecision(3) << s.max_rel_jacobian_at_vertices
               << " of max |J|, " << s.seconds_total * 1e3 << " ms\n";
   });

@@ -42,14 +42,14 @@ void write_boundary_demo(DemoRun& demo) {
       write_png(render_mesh(b.mesh, RenderOptions{}), demo.path(name + ".png"));
       const nlohmann::json stats = {{"cells_examined", b.stats.cells_examined},
                                     {"cells_kept", b.stats.cells_kept},
-                                    {"implicit_triangles", b.stats.triangles[6]},
+                                    {"implicit_triangles", b.stats.triangles_of(Part::JacobianZero)},
                                     {"max_rel_jacobian_at_vertices", b.stats.max_rel_jacobian_at_vertices},
                                     {"max_domain_distance", b.stats.max_domain_distance},
                                     {"seconds", b.stats.seconds_total}};
       write_file_atomically(demo.path(name + "-stats.json"), stats.dump(2) + "\n");
     }
     std::cout << name << ": " << e.description << "; " << b.stats.cells_examined << " cells examined, " << b.stats.cells_kept
-              << " kept, " << b.stats.triangles[6] << " implicit triangles\n  " << demo.path(name + ".ply") << "\n  "
+              << " kept, " << b.stats.triangles_of(Part::JacobianZero) << " implicit triangles\n  " << demo.path(name + ".ply") << "\n  "
               << demo.path(name + ".png") << "\n  " << demo.path(name + "-stats.json") << "\n";
     demo.gallery().add({name,
                         "Boundary (faces and the implicit surface J = 0 in orange), " + e.description,
