@@ -132,6 +132,59 @@ BernsteinTensor<D> compose_piece(const TensorSpline<D>& piece, const Lattice& la
   return out;
 }
 
+// The lattice cell [min, max] (index: per direction) that contains the whole object.
+struct LatticeCell {
+  std::array<double, 3> min{}, max{};
+  std::array<int, 3> index{};
+};
+
+template <int D>
+LatticeCell containing_cell(const Lattice& lattice, const TensorSpline<D>& object) {
+  // The lattice coordinates of the control points bound those of the whole object (convex hull
+  // property, also for positive weights), so checking them places the object in the domain and
+  // in one cell.
+  const double tolerance = 1e-12;
+  std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < object.num_control_points_total(); ++i) {
+    if (object.is_rational() && object.weights()[static_cast<std::size_t>(i)] == 0.0) {
+      throw InvalidInput("the object has a point at infinity (weight 0), which no lattice box contains",
+                         "control_points[" + std::to_string(i) + "]");
+    }
+    const double* x = object.points().data() + 3 * static_cast<std::size_t>(i);
+    const Eigen::Vector3d c = lattice_coordinates(lattice, Eigen::Vector3d(x[0], x[1], x[2]));
+    for (int m = 0; m < 3; ++m) {
+      lo[m] = std::min(lo[m], c[m]);
+      hi[m] = std::max(hi[m], c[m]);
+    }
+  }
+  LatticeCell cell;
+  for (int m = 0; m < 3; ++m) {
+    if (lo[m] < -tolerance || hi[m] > 1 + tolerance) {
+      throw InvalidInput("the object's control points leave the deformation domain (lattice coordinate " +
+                         std::to_string(m) + " spans [" + format_double(lo[m]) + ", " + format_double(hi[m]) +
+                         "], not inside [0, 1]): make the lattice around them, or with a larger margin");
+    }
+    const auto breaks = lattice.volume.knot_vector(m).breakpoints();
+    bool found = false;
+    for (std::size_t c = 0; c + 1 < breaks.size() && !found; ++c) {
+      if (lo[m] >= breaks[c] - tolerance && hi[m] <= breaks[c + 1] + tolerance) {
+        cell.min[m] = breaks[c];
+        cell.max[m] = breaks[c + 1];
+        cell.index[m] = static_cast<int>(c);
+        found = true;
+      }
+    }
+    if (!found) {
+      throw InvalidInput("the object crosses the knot planes of the segmented lattice (lattice coordinate " +
+                         std::to_string(m) + " spans [" + format_double(lo[m]) + ", " + format_double(hi[m]) +
+                         "]), where the deformation is a different polynomial on each side, so no single "
+                         "composition is exact: use a single-cell (Bézier) lattice, or deform a tessellation "
+                         "with deform_mesh");
+    }
+  }
+  return cell;
+}
+
 }  // namespace
 
 Eigen::Vector3d deform_point(const Lattice& lattice, const Eigen::Vector3d& point) {
@@ -187,49 +240,10 @@ TensorSpline<D> compose(const Lattice& lattice, const TensorSpline<D>& object) {
     }
   }
 
-  // The lattice coordinates of the control points bound those of the whole object (convex hull
-  // property, also for positive weights), so checking them places the object in the domain and
-  // in one cell.
-  const double tolerance = 1e-12;
-  std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (int i = 0; i < object.num_control_points_total(); ++i) {
-    if (object.is_rational() && object.weights()[static_cast<std::size_t>(i)] == 0.0) {
-      throw InvalidInput("the object has a point at infinity (weight 0), which no lattice box contains",
-                         "control_points[" + std::to_string(i) + "]");
-    }
-    const double* x = object.points().data() + 3 * static_cast<std::size_t>(i);
-    const Eigen::Vector3d c = lattice_coordinates(lattice, Eigen::Vector3d(x[0], x[1], x[2]));
-    for (int m = 0; m < 3; ++m) {
-      lo[m] = std::min(lo[m], c[m]);
-      hi[m] = std::max(hi[m], c[m]);
-    }
-  }
-  std::array<double, 3> cell_min{}, cell_max{};
-  std::array<int, 3> cell_index{};
-  for (int m = 0; m < 3; ++m) {
-    if (lo[m] < -tolerance || hi[m] > 1 + tolerance) {
-      throw InvalidInput("the object's control points leave the deformation domain (lattice coordinate " +
-                         std::to_string(m) + " spans [" + format_double(lo[m]) + ", " + format_double(hi[m]) +
-                         "], not inside [0, 1]): make the lattice around them, or with a larger margin");
-    }
-    const auto breaks = lattice.volume.knot_vector(m).breakpoints();
-    bool found = false;
-    for (std::size_t c = 0; c + 1 < breaks.size() && !found; ++c) {
-      if (lo[m] >= breaks[c] - tolerance && hi[m] <= breaks[c + 1] + tolerance) {
-        cell_min[m] = breaks[c];
-        cell_max[m] = breaks[c + 1];
-        cell_index[m] = static_cast<int>(c);
-        found = true;
-      }
-    }
-    if (!found) {
-      throw InvalidInput("the object crosses the knot planes of the segmented lattice (lattice coordinate " +
-                         std::to_string(m) + " spans [" + format_double(lo[m]) + ", " + format_double(hi[m]) +
-                         "]), where the deformation is a different polynomial on each side, so no single "
-                         "composition is exact: use a single-cell (Bézier) lattice, or deform a tessellation "
-                         "with deform_mesh");
-    }
-  }
+  const LatticeCell where = containing_cell(lattice, object);
+  const std::array<double, 3>& cell_min = where.min;
+  const std::array<double, 3>& cell_max = where.max;
+  const std::array<int, 3>& cell_index = where.index;
   const auto cells = bezier_pieces(lattice.volume);
   const std::array<int, 3> spans{lattice.volume.knot_vector(0).num_spans(), lattice.volume.knot_vector(1).num_spans(),
                                  lattice.volume.knot_vector(2).num_spans()};
