@@ -17,10 +17,9 @@ namespace volspline {
 
 namespace {
 
-using Eigen::Matrix3d;
-using Eigen::MatrixXd;
-using Eigen::Vector3d;
 using namespace detail;
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
 
 // Smoothness of `curve` at t: C^(p - multiplicity); a value that is no knot imposes nothing.
 int continuity(const BSplineCurve& curve, double t) {

@@ -67,6 +67,17 @@ void scale_coefficients(TensorCoefficients<D>& f, bool divide) {
   });
 }
 
+// The same coefficients in the other basis (scaled or not).
+template <class To, int D>
+To rescaled(const TensorCoefficients<D>& f, bool divide) {
+  To t;
+  t.degrees = f.degrees;
+  t.components = f.components;
+  t.coefficients = f.coefficients;
+  scale_coefficients<D>(t, divide);
+  return t;
+}
+
 // The components of a product: equal counts, or a scalar factor.
 int product_components(int a, int b) {
   if (a == b || b == 1) return a;
@@ -281,22 +292,12 @@ std::pair<double, double> bernstein_derivative_range(const BernsteinTensor<D>& f
 
 template <int D>
 ScaledBernsteinTensor<D> bernstein_scaled(const BernsteinTensor<D>& f) {
-  ScaledBernsteinTensor<D> s;
-  s.degrees = f.degrees;
-  s.components = f.components;
-  s.coefficients = f.coefficients;
-  scale_coefficients(s, false);
-  return s;
+  return rescaled<ScaledBernsteinTensor<D>>(f, false);
 }
 
 template <int D>
 BernsteinTensor<D> bernstein_unscaled(const ScaledBernsteinTensor<D>& f) {
-  BernsteinTensor<D> b;
-  b.degrees = f.degrees;
-  b.components = f.components;
-  b.coefficients = f.coefficients;
-  scale_coefficients(b, true);
-  return b;
+  return rescaled<BernsteinTensor<D>>(f, true);
 }
 
 template <int D>
