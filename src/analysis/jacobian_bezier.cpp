@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "volspline/core/bernstein_tensor.h"
 #include "volspline/core/error.h"
@@ -125,7 +126,7 @@ JacobianBernstein jacobian_bezier_coefficients(const BSplineVolume& cell, double
       scaled_product_add(dv[b], dw[a], -1.0, cross);
       scaled_product_add(du[c], cross, 1.0, j);
     }
-    result.coefficients = bernstein_unscaled(j);
+    result.coefficients = bernstein_unscaled(std::move(j));
     const double roundings = 16 + 2.0 * static_cast<double>(dv[0].count()) + 3.0 * static_cast<double>(du[0].count());
     std::vector<double> A{max_one_norm(cell, h, 0, 3, 0), max_one_norm(cell, h, 0, 3, 1), max_one_norm(cell, h, 0, 3, 2)};
     std::vector<double> rho(3);
@@ -162,7 +163,7 @@ JacobianBernstein jacobian_bezier_coefficients(const BSplineVolume& cell, double
     scaled_product_add(du[s[2]], minor2[s[0]][s[1]], 1.0, minor3);
     scaled_product_add(p[j], minor3, (j % 2 == 0) ? 1.0 : -1.0, d);
   }
-  result.coefficients = bernstein_unscaled(d);
+  result.coefficients = bernstein_unscaled(std::move(d));
   const double roundings = 16 + 2.0 * static_cast<double>(dv[0].count()) + 3.0 * static_cast<double>(du[0].count()) +
                            4.0 * static_cast<double>(p[0].count());
   std::vector<double> A{max_one_norm(cell, h, 0, 4, -1), max_one_norm(cell, h, 0, 4, 0), max_one_norm(cell, h, 0, 4, 1),

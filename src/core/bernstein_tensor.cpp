@@ -69,11 +69,11 @@ void scale_coefficients(TensorCoefficients<D>& f, bool divide) {
 
 // The same coefficients in the other basis (scaled or not).
 template <class To, int D>
-To rescaled(const TensorCoefficients<D>& f, bool divide) {
+To rescaled(TensorCoefficients<D> f, bool divide) {
   To t;
   t.degrees = f.degrees;
   t.components = f.components;
-  t.coefficients = f.coefficients;
+  t.coefficients = std::move(f.coefficients);
   scale_coefficients<D>(t, divide);
   return t;
 }
@@ -296,8 +296,18 @@ ScaledBernsteinTensor<D> bernstein_scaled(const BernsteinTensor<D>& f) {
 }
 
 template <int D>
+ScaledBernsteinTensor<D> bernstein_scaled(BernsteinTensor<D>&& f) {
+  return rescaled<ScaledBernsteinTensor<D>>(std::move(static_cast<TensorCoefficients<D>&>(f)), false);
+}
+
+template <int D>
 BernsteinTensor<D> bernstein_unscaled(const ScaledBernsteinTensor<D>& f) {
   return rescaled<BernsteinTensor<D>>(f, true);
+}
+
+template <int D>
+BernsteinTensor<D> bernstein_unscaled(ScaledBernsteinTensor<D>&& f) {
+  return rescaled<BernsteinTensor<D>>(std::move(static_cast<TensorCoefficients<D>&>(f)), true);
 }
 
 template <int D>
@@ -336,7 +346,7 @@ template <int D>
 BernsteinTensor<D> bernstein_product(const BernsteinTensor<D>& f, const BernsteinTensor<D>& g) {
   ScaledBernsteinTensor<D> h(product_degrees(f.degrees, g.degrees), product_components(f.components, g.components));
   scaled_product_add(bernstein_scaled(f), bernstein_scaled(g), 1.0, h);
-  return bernstein_unscaled(h);
+  return bernstein_unscaled(std::move(h));
 }
 
 template <int D>
@@ -416,7 +426,9 @@ void bernstein_blossom(const BernsteinTensor<1>& f, const double* arguments, dou
   template void bernstein_add(BernsteinTensor<D>&, const BernsteinTensor<D>&);                                      \
   template BernsteinTensor<D> bernstein_components(const BernsteinTensor<D>&, int, int);                            \
   template ScaledBernsteinTensor<D> bernstein_scaled(const BernsteinTensor<D>&);                                    \
+  template ScaledBernsteinTensor<D> bernstein_scaled(BernsteinTensor<D>&&);                                         \
   template BernsteinTensor<D> bernstein_unscaled(const ScaledBernsteinTensor<D>&);                                  \
+  template BernsteinTensor<D> bernstein_unscaled(ScaledBernsteinTensor<D>&&);                                       \
   template void scaled_product_add(const ScaledBernsteinTensor<D>&, const ScaledBernsteinTensor<D>&, double,        \
                                    ScaledBernsteinTensor<D>&);
 

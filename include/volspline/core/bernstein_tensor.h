@@ -199,10 +199,16 @@ void bernstein_blossom(const BernsteinTensor<1>& f, const double* arguments, dou
 /// f in the scaled basis: each coefficient times its binomials, multiplied in direction order.
 template <int D>
 ScaledBernsteinTensor<D> bernstein_scaled(const BernsteinTensor<D>& f);
+/// The same, reusing the storage of a temporary (no allocation).
+template <int D>
+ScaledBernsteinTensor<D> bernstein_scaled(BernsteinTensor<D>&& f);
 
 /// The Bernstein coefficients of a scaled tensor: each divided by the product of its binomials.
 template <int D>
 BernsteinTensor<D> bernstein_unscaled(const ScaledBernsteinTensor<D>& f);
+/// The same, reusing the storage of a temporary (no allocation).
+template <int D>
+BernsteinTensor<D> bernstein_unscaled(ScaledBernsteinTensor<D>&& f);
 
 /// out += sign * (a b) in the scaled basis, where out has degrees a.degrees + b.degrees: one
 /// multiply-add per pair of coefficients and no allocation (the inner loop of every product).
