@@ -99,9 +99,6 @@ struct ScaledBernsteinTensor : TensorCoefficients<D> {
   using TensorCoefficients<D>::TensorCoefficients;
 };
 
-/// The scalar polynomials of analysis/ (Jacobian determinants, weights) have three variables.
-using TrivariateBernstein = BernsteinTensor<3>;
-
 /// Parameters and degrees of a D-variate tensor, as function parameters whose D is taken from
 /// the tensor argument (std::array's size is a std::size_t, which would not deduce an int D).
 template <int D>
