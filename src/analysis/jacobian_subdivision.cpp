@@ -15,32 +15,13 @@ namespace {
 
 constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;
 
-// The range of the local derivative n (c_{i+1} - c_i) of f along `direction`.
-std::pair<double, double> derivative_range(const BernsteinTensor& f, int direction) {
-  const int n = f.degrees[static_cast<std::size_t>(direction)];
-  if (n == 0) return {0, 0};
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  std::array<int, 3> step{0, 0, 0};
-  step[static_cast<std::size_t>(direction)] = 1;
-  for (int k = 0; k + step[2] < f.size(2); ++k)
-    for (int j = 0; j + step[1] < f.size(1); ++j)
-      for (int i = 0; i + step[0] < f.size(0); ++i) {
-        const double d = n * (f.at(i + step[0], j + step[1], k + step[2]) - f.at(i, j, k));
-        lo = std::min(lo, d);
-        hi = std::max(hi, d);
-      }
-  return {lo, hi};
-}
-
 // The control vectors of the partial derivative of the geometry along `directions` (one or two
 // local derivatives), as 3-vectors.
-std::vector<Eigen::Vector3d> derivative_vectors(const std::array<BernsteinTensor, 3>& g, std::initializer_list<int> directions) {
-  std::array<BernsteinTensor, 3> d = g;
-  for (int dir : directions) {
-    for (auto& t : d) t = bernstein_derivative(t, dir);
-  }
-  std::vector<Eigen::Vector3d> v(d[0].count());
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = {d[0].coefficients[i], d[1].coefficients[i], d[2].coefficients[i]};
+std::vector<Eigen::Vector3d> derivative_vectors(const BernsteinTensor<3>& g, std::initializer_list<int> directions) {
+  BernsteinTensor<3> d = g;
+  for (int dir : directions) d = bernstein_derivative(d, dir);
+  std::vector<Eigen::Vector3d> v(d.count());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = Eigen::Map<const Eigen::Vector3d>(d.coefficients.data() + 3 * i);
   return v;
 }
 
@@ -86,12 +67,8 @@ std::vector<JacobianCell> JacobianSubdivision::make_roots() const {
     if (method_ == JacobianBoundMethod::Bezier) {
       cell.jacobian = jacobian_bezier_coefficients(piece, input_error_);
     } else {
-      const auto deg = piece.degrees();
-      for (int c = 0; c < 3; ++c) {
-        BernsteinTensor t({deg[0], deg[1], deg[2]});
-        for (std::size_t q = 0; q < t.count(); ++q) t.coefficients[q] = piece.points()[q * 3 + static_cast<std::size_t>(c)];
-        cell.geometry[static_cast<std::size_t>(c)] = std::move(t);
-      }
+      cell.geometry = BernsteinTensor<3>(piece.degrees(), 3);
+      cell.geometry.coefficients = piece.points();
     }
     bound(cell);
     cells.push_back(std::move(cell));
@@ -147,11 +124,9 @@ std::pair<JacobianCell, JacobianCell> JacobianSubdivision::split(const JacobianC
       b.jacobian.weights = std::move(wr);
     }
   } else {
-    for (std::size_t c = 0; c < 3; ++c) {
-      auto [left, right] = bernstein_split(cell.geometry[c], direction, 0.5);
-      a.geometry[c] = std::move(left);
-      b.geometry[c] = std::move(right);
-    }
+    auto [left, right] = bernstein_split(cell.geometry, direction, 0.5);
+    a.geometry = std::move(left);
+    b.geometry = std::move(right);
   }
   bound(a);
   bound(b);
@@ -164,7 +139,7 @@ int JacobianSubdivision::split_direction(const JacobianCell& cell, bool by_magni
     return by_magnitude ? std::max(std::abs(r.first), std::abs(r.second)) : r.second - r.first;
   };
   if (method_ == JacobianBoundMethod::Bezier) {
-    for (int d = 0; d < 3; ++d) g[static_cast<std::size_t>(d)] = measure(derivative_range(cell.jacobian.coefficients, d));
+    for (int d = 0; d < 3; ++d) g[static_cast<std::size_t>(d)] = measure(bernstein_derivative_range(cell.jacobian.coefficients, d));
   } else {
     // §6: J_d = det(D_dd..) summed over the three rows, each bounded by eq. 1; all in local
     // parameters, which already carries the factor "cell size in d".
@@ -191,7 +166,7 @@ int JacobianSubdivision::split_direction(const JacobianCell& cell, bool by_magni
 
 double JacobianSubdivision::nonlinearity(const JacobianCell& cell) const {
   if (method_ != JacobianBoundMethod::Bezier) throw InvalidInput("nonlinearity needs Bézier bounds");
-  const BernsteinTensor& c = cell.jacobian.coefficients;
+  const BernsteinTensor<3>& c = cell.jacobian.coefficients;
   // A(s) = mean + sum_d slope_d (s_d - 1/2), slope_d the mean end-to-end difference along d;
   // the Bernstein coefficients of A are its values at the Greville points i / n.
   double mean = 0;
@@ -270,7 +245,7 @@ std::pair<double, double> JacobianSubdivision::jacobian_bounds(const JacobianCel
 }
 
 double JacobianSubdivision::corner_value(const JacobianCell& cell, int corner) const {
-  const BernsteinTensor& j = cell.jacobian.coefficients;
+  const BernsteinTensor<3>& j = cell.jacobian.coefficients;
   return j.at((corner & 1) ? j.size(0) - 1 : 0, (corner & 2) ? j.size(1) - 1 : 0, (corner & 4) ? j.size(2) - 1 : 0);
 }
 

@@ -51,6 +51,32 @@ std::optional<std::array<double, 3>> collapsed_corner(const BSplineVolume& v) {
 
 std::array<double, 3> to_array(const Eigen::Vector3d& p) { return {p[0], p[1], p[2]}; }
 
+// A certified point of one sign and its value of J.
+using SignedPoint = std::optional<std::pair<Eigen::Vector3d, double>>;
+
+// The verdict from what the subdivision found (docs/jacobian.md, "Validity").
+void set_verdict(JacobianValidity& result, const SignedPoint& positive, const SignedPoint& negative,
+                 const std::optional<std::array<double, 3>>& collapse, double signed_mass, bool unresolved) {
+  if (positive && negative) {
+    result.verdict = JacobianVerdict::Invalid;
+    const bool positive_bulk = signed_mass >= 0;
+    const auto& witness = positive_bulk ? *negative : *positive;
+    const auto& reference = positive_bulk ? *positive : *negative;
+    result.witness = to_array(witness.first);
+    result.witness_value = witness.second;
+    result.reference_point = to_array(reference.first);
+  } else if (collapse) {
+    result.verdict = JacobianVerdict::Invalid;
+    result.witness = *collapse;
+    result.witness_value = 0;
+    if (positive) result.reference_point = to_array(positive->first);
+    if (negative) result.reference_point = to_array(negative->first);
+  } else if (!unresolved) {
+    result.verdict = JacobianVerdict::Valid;
+    result.orientation = result.lower > 0 ? 1 : -1;
+  }
+}
+
 }  // namespace
 
 const char* verdict_name(JacobianVerdict verdict) {
@@ -76,7 +102,7 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
   result.upper = -result.lower;
 
   // Certified points of each sign, with their values.
-  std::optional<std::pair<Eigen::Vector3d, double>> positive, negative;
+  SignedPoint positive, negative;
   bool unresolved = false;
   double signed_mass = 0;  // sign of the bulk of J, for choosing which sign is the witness
   auto finish = [&](const JacobianCell& cell) {
@@ -143,24 +169,7 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
     queue.pop();
   }
 
-  if (positive && negative) {
-    result.verdict = JacobianVerdict::Invalid;
-    const bool positive_bulk = signed_mass >= 0;
-    const auto& witness = positive_bulk ? *negative : *positive;
-    const auto& reference = positive_bulk ? *positive : *negative;
-    result.witness = to_array(witness.first);
-    result.witness_value = witness.second;
-    result.reference_point = to_array(reference.first);
-  } else if (collapse) {
-    result.verdict = JacobianVerdict::Invalid;
-    result.witness = *collapse;
-    result.witness_value = 0;
-    if (positive) result.reference_point = to_array(positive->first);
-    if (negative) result.reference_point = to_array(negative->first);
-  } else if (!unresolved) {
-    result.verdict = JacobianVerdict::Valid;
-    result.orientation = result.lower > 0 ? 1 : -1;
-  }
+  set_verdict(result, positive, negative, collapse, signed_mass, unresolved);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -51,6 +51,8 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : degree_(degree),
 }
 
 KnotVector KnotVector::bezier(int degree, double a, double b) {
+  // Checked before the copies are sized (the constructor checks it again).
+  if (degree < 1) throw InvalidInput("degree must be at least 1, got " + std::to_string(degree));
   std::vector<double> k(static_cast<std::size_t>(degree + 1), a);
   k.insert(k.end(), static_cast<std::size_t>(degree + 1), b);
   return KnotVector(degree, std::move(k));
@@ -58,6 +60,7 @@ KnotVector KnotVector::bezier(int degree, double a, double b) {
 
 KnotVector KnotVector::uniform_clamped(int degree, int spans, double a, double b) {
   if (spans < 1) throw InvalidInput("a knot vector needs at least one span");
+  if (degree < 1) throw InvalidInput("degree must be at least 1, got " + std::to_string(degree));
   std::vector<double> k(static_cast<std::size_t>(degree + 1), a);
   for (int i = 1; i < spans; ++i) k.push_back(a + (b - a) * i / spans);
   k.insert(k.end(), static_cast<std::size_t>(degree + 1), b);
@@ -243,6 +246,16 @@ std::vector<double> KnotVector::breakpoints() const {
   for (std::size_t i = lo; i <= hi; ++i)
     if (b.empty() || knots_[i] != b.back()) b.push_back(knots_[i]);
   return b;
+}
+
+std::vector<double> KnotVector::greville_abscissae() const {
+  std::vector<double> g(static_cast<std::size_t>(num_basis()));
+  for (int i = 0; i < num_basis(); ++i) {
+    double sum = 0;
+    for (int j = 1; j <= degree_; ++j) sum += knots_[static_cast<std::size_t>(i + j)];
+    g[static_cast<std::size_t>(i)] = sum / degree_;
+  }
+  return g;
 }
 
 int KnotVector::multiplicity(double t) const {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "volspline/core/bernstein_tensor.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/mesh/mesh_checks.h"
@@ -26,131 +27,41 @@ Eigen::Vector3d combine(const Lattice& lattice, const Eigen::Vector3d& point, co
   return point + (f - lattice_box_point(lattice, clamped));
 }
 
-// ---------------------------------------------------------------------------------------------
-// Bernstein polynomials in D variables with vector coefficients, for functional composition.
-// Coefficient of multi-index a, component j: c[linear(a) * components + j], first index fastest
-// (the storage order of control points, so a Bézier piece's control points are its Bernstein
-// coefficients as they stand).
-
+// acc += vector * g for a scalar polynomial g of acc's degrees: one lattice control point times
+// its basis function.
 template <int D>
-struct Bernstein {
-  std::array<int, D> degree{};
-  int components = 1;
-  std::vector<double> c;
-
-  std::size_t count() const {
-    std::size_t n = 1;
-    for (const int d : degree) n *= static_cast<std::size_t>(d + 1);
-    return n;
-  }
-  static Bernstein zero(const std::array<int, D>& degree, int components) {
-    Bernstein b;
-    b.degree = degree;
-    b.components = components;
-    b.c.assign(b.count() * static_cast<std::size_t>(components), 0.0);
-    return b;
-  }
-  static Bernstein one() {
-    Bernstein b;
-    b.c = {1.0};
-    return b;
-  }
-};
-
-// Binomial coefficients up to the largest degree a composition may reach; doubles because the
-// product formula divides by them.
-const std::vector<std::vector<double>>& binomials() {
-  static const std::vector<std::vector<double>> table = [] {
-    std::vector<std::vector<double>> t(kMaxModelDegree + 1);
-    for (int n = 0; n <= kMaxModelDegree; ++n) {
-      t[n].assign(static_cast<std::size_t>(n + 1), 1.0);
-      for (int k = 1; k < n; ++k) t[n][k] = t[n - 1][k - 1] + t[n - 1][k];
-    }
-    return t;
-  }();
-  return table;
+void accumulate_outer(BernsteinTensor<D>& acc, const double* vector, const BernsteinTensor<D>& g) {
+  const std::size_t k = static_cast<std::size_t>(acc.components);
+  for (std::size_t i = 0; i < g.coefficients.size(); ++i)
+    for (std::size_t j = 0; j < k; ++j) acc.coefficients[i * k + j] += vector[j] * g.coefficients[i];
 }
 
 template <int D>
-std::vector<std::array<int, D>> multi_indices(const std::array<int, D>& degree) {
-  std::vector<std::array<int, D>> out;
-  std::array<int, D> a{};
-  while (true) {
-    out.push_back(a);
-    int m = 0;
-    while (m < D && ++a[m] > degree[m]) a[m++] = 0;
-    if (m == D) return out;
-  }
-}
-
-// The product f * g of Bernstein polynomials (g scalar) in Bernstein form of the summed degrees:
-// B_i^a B_j^b = C(a,i) C(b,j) / C(a+b,i+j) B_{i+j}^{a+b} in each variable. All weights are
-// positive, so the product of polynomials with coefficients of one sign is computed without
-// cancellation.
-template <int D>
-Bernstein<D> multiply(const Bernstein<D>& f, const Bernstein<D>& g) {
-  std::array<int, D> degree{};
-  for (int m = 0; m < D; ++m) degree[m] = f.degree[m] + g.degree[m];
-  Bernstein<D> out = Bernstein<D>::zero(degree, f.components);
-  const auto& C = binomials();
-  const auto fi = multi_indices<D>(f.degree), gi = multi_indices<D>(g.degree);
-  const int k = f.components;
-  for (std::size_t b = 0; b < gi.size(); ++b) {
-    const double gb = g.c[b];
-    if (gb == 0.0) continue;
-    for (std::size_t a = 0; a < fi.size(); ++a) {
-      double weight = gb;
-      std::size_t index = 0, stride = 1;
-      for (int m = 0; m < D; ++m) {
-        const int i = fi[a][m], j = gi[b][m];
-        weight *= C[f.degree[m]][i] * C[g.degree[m]][j] / C[degree[m]][i + j];
-        index += static_cast<std::size_t>(i + j) * stride;
-        stride *= static_cast<std::size_t>(degree[m] + 1);
-      }
-      for (int j = 0; j < k; ++j) out.c[index * k + j] += weight * f.c[a * k + j];
-    }
-  }
-  return out;
-}
-
-// acc += f (same degree and components).
-template <int D>
-void accumulate(Bernstein<D>& acc, const Bernstein<D>& f) {
-  for (std::size_t i = 0; i < acc.c.size(); ++i) acc.c[i] += f.c[i];
-}
-
-// acc += vector * g for a scalar polynomial g of acc's degree.
-template <int D>
-void accumulate_outer(Bernstein<D>& acc, const double* vector, const Bernstein<D>& g) {
-  const int k = acc.components;
-  for (std::size_t i = 0; i < g.c.size(); ++i)
-    for (int j = 0; j < k; ++j) acc.c[i * k + j] += vector[j] * g.c[i];
-}
-
-template <int D>
-Bernstein<D> power(const Bernstein<D>& f, int n) {
-  Bernstein<D> out = Bernstein<D>::one();
-  for (int i = 0; i < n; ++i) out = multiply(out, f);
-  return out;
+BernsteinTensor<D> constant_one() {
+  BernsteinTensor<D> one(std::array<int, D>{}, 1);
+  one.coefficients[0] = 1.0;
+  return one;
 }
 
 // The lattice's Bernstein basis functions of one direction with the object substituted:
 // B_i^p(s) = C(p,i) s^i (1 - s)^(p-i) with s = S / W, times W^p to stay polynomial:
 // C(p,i) S^i (W - S)^(p-i), of degree p times the object's.
+// The products are Bernstein products (core/bernstein_tensor.h): all their weights are positive,
+// so polynomials with coefficients of one sign multiply without cancellation.
 template <int D>
-std::vector<Bernstein<D>> substituted_basis(int p, const Bernstein<D>& S, const Bernstein<D>& W) {
-  Bernstein<D> R = W;
-  for (std::size_t i = 0; i < R.c.size(); ++i) R.c[i] -= S.c[i];
-  std::vector<Bernstein<D>> s_powers{Bernstein<D>::one()}, r_powers{Bernstein<D>::one()};
+std::vector<BernsteinTensor<D>> substituted_basis(int p, const BernsteinTensor<D>& S, const BernsteinTensor<D>& W) {
+  BernsteinTensor<D> R = W;
+  for (std::size_t i = 0; i < R.coefficients.size(); ++i) R.coefficients[i] -= S.coefficients[i];
+  std::vector<BernsteinTensor<D>> s_powers{constant_one<D>()}, r_powers{constant_one<D>()};
   for (int i = 1; i <= p; ++i) {
-    s_powers.push_back(i == 1 ? S : multiply(s_powers.back(), S));
-    r_powers.push_back(i == 1 ? R : multiply(r_powers.back(), R));
+    s_powers.push_back(i == 1 ? S : bernstein_product(s_powers.back(), S));
+    r_powers.push_back(i == 1 ? R : bernstein_product(r_powers.back(), R));
   }
-  std::vector<Bernstein<D>> basis;
+  std::vector<BernsteinTensor<D>> basis;
   for (int i = 0; i <= p; ++i) {
-    // Degree-0 factors have degree array 0; multiply handles them like any other polynomial.
-    Bernstein<D> b = multiply(s_powers[i], r_powers[p - i]);
-    for (double& x : b.c) x *= binomials()[p][i];
+    // Degree-0 factors have degrees 0; the product handles them like any other polynomial.
+    BernsteinTensor<D> b = bernstein_product(s_powers[static_cast<std::size_t>(i)], r_powers[static_cast<std::size_t>(p - i)]);
+    for (double& x : b.coefficients) x *= binomial_coefficient(p, i);
     basis.push_back(std::move(b));
   }
   return basis;
@@ -159,7 +70,7 @@ std::vector<Bernstein<D>> substituted_basis(int p, const Bernstein<D>& S, const 
 // One Bézier piece of the object composed with one Bézier cell of the lattice, in homogeneous
 // form: returns coefficients with `out_size` numbers per Bernstein coefficient.
 template <int D>
-Bernstein<D> compose_piece(const TensorSpline<D>& piece, const Lattice& lattice, const BSplineVolume& cell,
+BernsteinTensor<D> compose_piece(const TensorSpline<D>& piece, const Lattice& lattice, const BSplineVolume& cell,
                            const std::array<double, 3>& cell_min, const std::array<double, 3>& cell_max) {
   const auto d = piece.degrees();
   const int k = piece.coefficient_size();
@@ -173,16 +84,16 @@ Bernstein<D> compose_piece(const TensorSpline<D>& piece, const Lattice& lattice,
   const Eigen::Vector3d U = lattice.axes.col(0), V = lattice.axes.col(1), W = lattice.axes.col(2);
   const Eigen::Vector3d vw = V.cross(W), uw = U.cross(W), uv = U.cross(V);
   const std::array<Eigen::Vector3d, 3> rows{vw / vw.dot(U), uw / uw.dot(V), uv / uv.dot(W)};
-  std::array<Bernstein<D>, 3> S;
-  Bernstein<D> weight = Bernstein<D>::zero(d, 1);
-  for (int m = 0; m < 3; ++m) S[m] = Bernstein<D>::zero(d, 1);
+  std::array<BernsteinTensor<D>, 3> S;
+  BernsteinTensor<D> weight(d, 1);
+  for (int m = 0; m < 3; ++m) S[m] = BernsteinTensor<D>(d, 1);
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d x(h[i * k], h[i * k + 1], h[i * k + 2]);
     const double w = object_rational ? h[i * k + 3] : 1.0;
-    weight.c[i] = w;
+    weight.coefficients[i] = w;
     for (int m = 0; m < 3; ++m) {
       const double s = rows[m].dot(x - lattice.origin * w);
-      S[m].c[i] = (s - cell_min[m] * w) / (cell_max[m] - cell_min[m]);
+      S[m].coefficients[i] = (s - cell_min[m] * w) / (cell_max[m] - cell_min[m]);
     }
   }
 
@@ -194,31 +105,84 @@ Bernstein<D> compose_piece(const TensorSpline<D>& piece, const Lattice& lattice,
   const auto B2 = substituted_basis(p[2], S[2], weight);
   // Sum factorisation: sum_ijk c_ijk B0_i B1_j B2_k = sum_i B0_i (sum_j B1_j (sum_k c_ijk B2_k)),
   // so the expensive products are taken (p+1)(q+1) + (p+1) times instead of (p+1)(q+1)(r+1).
-  Bernstein<D> result;
+  BernsteinTensor<D> result;
   for (int i = 0; i <= p[0]; ++i) {
-    Bernstein<D> Hi;
+    BernsteinTensor<D> Hi;
     for (int j = 0; j <= p[1]; ++j) {
-      Bernstein<D> G = Bernstein<D>::zero(B2[0].degree, kl);
+      BernsteinTensor<D> G(B2[0].degrees, kl);
       for (int l = 0; l <= p[2]; ++l) {
         const std::size_t index = static_cast<std::size_t>(i + (p[0] + 1) * (j + (p[1] + 1) * l));
         accumulate_outer(G, c.data() + index * kl, B2[l]);
       }
-      Bernstein<D> term = multiply(G, B1[j]);
-      if (j == 0) Hi = std::move(term); else accumulate(Hi, term);
+      BernsteinTensor<D> term = bernstein_product(G, B1[static_cast<std::size_t>(j)]);
+      if (j == 0) Hi = std::move(term); else bernstein_add(Hi, term);
     }
-    Bernstein<D> term = multiply(Hi, B0[i]);
-    if (i == 0) result = std::move(term); else accumulate(result, term);
+    BernsteinTensor<D> term = bernstein_product(Hi, B0[static_cast<std::size_t>(i)]);
+    if (i == 0) result = std::move(term); else bernstein_add(result, term);
   }
   if (cell.is_rational() || !object_rational) return result;
   // Polynomial lattice, rational object: result = W^(p+q+r) F(S / W), so F is the rational
   // function with numerator `result` and denominator W^(p+q+r).
-  const Bernstein<D> denominator = power(weight, p[0] + p[1] + p[2]);
-  Bernstein<D> out = Bernstein<D>::zero(result.degree, 4);
-  for (std::size_t i = 0; i < denominator.c.size(); ++i) {
-    for (int j = 0; j < 3; ++j) out.c[i * 4 + j] = result.c[i * 3 + j];
-    out.c[i * 4 + 3] = denominator.c[i];
+  const BernsteinTensor<D> denominator = bernstein_power(weight, p[0] + p[1] + p[2]);
+  BernsteinTensor<D> out(result.degrees, 4);
+  for (std::size_t i = 0; i < denominator.coefficients.size(); ++i) {
+    for (std::size_t j = 0; j < 3; ++j) out.coefficients[i * 4 + j] = result.coefficients[i * 3 + j];
+    out.coefficients[i * 4 + 3] = denominator.coefficients[i];
   }
   return out;
+}
+
+// The lattice cell [min, max] (index: per direction) that contains the whole object.
+struct LatticeCell {
+  std::array<double, 3> min{}, max{};
+  std::array<int, 3> index{};
+};
+
+template <int D>
+LatticeCell containing_cell(const Lattice& lattice, const TensorSpline<D>& object) {
+  // The lattice coordinates of the control points bound those of the whole object (convex hull
+  // property, also for positive weights), so checking them places the object in the domain and
+  // in one cell.
+  const double tolerance = 1e-12;
+  std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < object.num_control_points_total(); ++i) {
+    if (object.is_rational() && object.weights()[static_cast<std::size_t>(i)] == 0.0) {
+      throw InvalidInput("the object has a point at infinity (weight 0), which no lattice box contains",
+                         "control_points[" + std::to_string(i) + "]");
+    }
+    const double* x = object.points().data() + 3 * static_cast<std::size_t>(i);
+    const Eigen::Vector3d c = lattice_coordinates(lattice, Eigen::Vector3d(x[0], x[1], x[2]));
+    for (int m = 0; m < 3; ++m) {
+      lo[m] = std::min(lo[m], c[m]);
+      hi[m] = std::max(hi[m], c[m]);
+    }
+  }
+  LatticeCell cell;
+  for (int m = 0; m < 3; ++m) {
+    if (lo[m] < -tolerance || hi[m] > 1 + tolerance) {
+      throw InvalidInput("the object's control points leave the deformation domain (lattice coordinate " +
+                         std::to_string(m) + " spans [" + format_double(lo[m]) + ", " + format_double(hi[m]) +
+                         "], not inside [0, 1]): make the lattice around them, or with a larger margin");
+    }
+    const auto breaks = lattice.volume.knot_vector(m).breakpoints();
+    bool found = false;
+    for (std::size_t c = 0; c + 1 < breaks.size() && !found; ++c) {
+      if (lo[m] >= breaks[c] - tolerance && hi[m] <= breaks[c + 1] + tolerance) {
+        cell.min[m] = breaks[c];
+        cell.max[m] = breaks[c + 1];
+        cell.index[m] = static_cast<int>(c);
+        found = true;
+      }
+    }
+    if (!found) {
+      throw InvalidInput("the object crosses the knot planes of the segmented lattice (lattice coordinate " +
+                         std::to_string(m) + " spans [" + format_double(lo[m]) + ", " + format_double(hi[m]) +
+                         "]), where the deformation is a different polynomial on each side, so no single "
+                         "composition is exact: use a single-cell (Bézier) lattice, or deform a tessellation "
+                         "with deform_mesh");
+    }
+  }
+  return cell;
 }
 
 }  // namespace
@@ -276,49 +240,10 @@ TensorSpline<D> compose(const Lattice& lattice, const TensorSpline<D>& object) {
     }
   }
 
-  // The lattice coordinates of the control points bound those of the whole object (convex hull
-  // property, also for positive weights), so checking them places the object in the domain and
-  // in one cell.
-  const double tolerance = 1e-12;
-  std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (int i = 0; i < object.num_control_points_total(); ++i) {
-    if (object.is_rational() && object.weights()[static_cast<std::size_t>(i)] == 0.0) {
-      throw InvalidInput("the object has a point at infinity (weight 0), which no lattice box contains",
-                         "control_points[" + std::to_string(i) + "]");
-    }
-    const double* x = object.points().data() + 3 * static_cast<std::size_t>(i);
-    const Eigen::Vector3d c = lattice_coordinates(lattice, Eigen::Vector3d(x[0], x[1], x[2]));
-    for (int m = 0; m < 3; ++m) {
-      lo[m] = std::min(lo[m], c[m]);
-      hi[m] = std::max(hi[m], c[m]);
-    }
-  }
-  std::array<double, 3> cell_min{}, cell_max{};
-  std::array<int, 3> cell_index{};
-  for (int m = 0; m < 3; ++m) {
-    if (lo[m] < -tolerance || hi[m] > 1 + tolerance) {
-      throw InvalidInput("the object's control points leave the deformation domain (lattice coordinate " +
-                         std::to_string(m) + " spans [" + format_double(lo[m]) + ", " + format_double(hi[m]) +
-                         "], not inside [0, 1]): make the lattice around them, or with a larger margin");
-    }
-    const auto breaks = lattice.volume.knot_vector(m).breakpoints();
-    bool found = false;
-    for (std::size_t c = 0; c + 1 < breaks.size() && !found; ++c) {
-      if (lo[m] >= breaks[c] - tolerance && hi[m] <= breaks[c + 1] + tolerance) {
-        cell_min[m] = breaks[c];
-        cell_max[m] = breaks[c + 1];
-        cell_index[m] = static_cast<int>(c);
-        found = true;
-      }
-    }
-    if (!found) {
-      throw InvalidInput("the object crosses the knot planes of the segmented lattice (lattice coordinate " +
-                         std::to_string(m) + " spans [" + format_double(lo[m]) + ", " + format_double(hi[m]) +
-                         "]), where the deformation is a different polynomial on each side, so no single "
-                         "composition is exact: use a single-cell (Bézier) lattice, or deform a tessellation "
-                         "with deform_mesh");
-    }
-  }
+  const LatticeCell where = containing_cell(lattice, object);
+  const std::array<double, 3>& cell_min = where.min;
+  const std::array<double, 3>& cell_max = where.max;
+  const std::array<int, 3>& cell_index = where.index;
   const auto cells = bezier_pieces(lattice.volume);
   const std::array<int, 3> spans{lattice.volume.knot_vector(0).num_spans(), lattice.volume.knot_vector(1).num_spans(),
                                  lattice.volume.knot_vector(2).num_spans()};
@@ -345,7 +270,7 @@ TensorSpline<D> compose(const Lattice& lattice, const TensorSpline<D>& object) {
   const int size = rational ? 4 : 3;
   std::vector<double> coefficients(total * static_cast<std::size_t>(size));
   for (std::size_t piece = 0; piece < pieces.size(); ++piece) {
-    const Bernstein<D> b = compose_piece(pieces[piece], lattice, cell, cell_min, cell_max);
+    const BernsteinTensor<D> b = compose_piece(pieces[piece], lattice, cell, cell_min, cell_max);
     std::array<int, D> offset{};
     std::size_t rest = piece;
     for (int m = 0; m < D; ++m) {
@@ -353,16 +278,16 @@ TensorSpline<D> compose(const Lattice& lattice, const TensorSpline<D>& object) {
       offset[m] = static_cast<int>(rest % cells_m) * degree[m];
       rest /= cells_m;
     }
-    const auto indices = multi_indices<D>(b.degree);
-    for (std::size_t a = 0; a < indices.size(); ++a) {
+    for (std::size_t a = 0; a < b.count(); ++a) {
+      const std::array<int, D> local = b.multi_index(a);
       std::size_t index = 0, stride = 1;
       for (int m = 0; m < D; ++m) {
-        index += static_cast<std::size_t>(offset[m] + indices[a][m]) * stride;
+        index += static_cast<std::size_t>(offset[m] + local[m]) * stride;
         stride *= static_cast<std::size_t>(counts[m]);
       }
       // Neighbouring pieces share their boundary coefficients (equal up to rounding); the later
       // piece's copy is kept.
-      for (int j = 0; j < size; ++j) coefficients[index * size + j] = b.c[a * size + j];
+      for (int j = 0; j < size; ++j) coefficients[index * size + j] = b.coefficients[a * size + j];
     }
   }
   return TensorSpline<D>::from_homogeneous(std::move(knots), 3, rational, std::move(coefficients));

@@ -20,20 +20,6 @@ bool spans_space(const Eigen::Matrix3d& axes) {
   return scale > 0 && std::isfinite(scale) && std::abs(axes.determinant()) > 1e-12 * scale;
 }
 
-// Greville abscissae (t_{i+1} + ... + t_{i+p}) / p: the coefficients with which the B-spline
-// basis reproduces the linear function s (de Boor's identity), hence the undeformed control
-// points. For a single Bézier segment they are i / p, Lasser's eq. 11.
-std::vector<double> greville(const KnotVector& knots) {
-  const int p = knots.degree();
-  std::vector<double> g(static_cast<std::size_t>(knots.num_basis()));
-  for (int i = 0; i < knots.num_basis(); ++i) {
-    double sum = 0;
-    for (int j = 1; j <= p; ++j) sum += knots.knots()[static_cast<std::size_t>(i + j)];
-    g[static_cast<std::size_t>(i)] = sum / p;
-  }
-  return g;
-}
-
 const char* axis_name(int d) { return d == 0 ? "U" : d == 1 ? "V" : "W"; }
 
 [[noreturn]] void fail(const std::string& source, const std::string& path, const std::string& message) {
@@ -133,7 +119,10 @@ Lattice undeformed_lattice(const std::vector<Eigen::Vector3d>& points, std::arra
   std::array<KnotVector, 3> knots{KnotVector::uniform_clamped(degree[0], divisions[0]),
                                   KnotVector::uniform_clamped(degree[1], divisions[1]),
                                   KnotVector::uniform_clamped(degree[2], divisions[2])};
-  const std::array<std::vector<double>, 3> g{greville(knots[0]), greville(knots[1]), greville(knots[2])};
+  // The Greville abscissae reproduce the linear function s (de Boor's identity), hence the
+  // undeformed control points; for a single Bézier segment they are i / p, Lasser's eq. 11.
+  const std::array<std::vector<double>, 3> g{knots[0].greville_abscissae(), knots[1].greville_abscissae(),
+                                             knots[2].greville_abscissae()};
   std::vector<double> control;
   control.reserve(g[0].size() * g[1].size() * g[2].size() * 3);
   for (const double gk : g[2])

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "directional.h"
-#include "volspline/core/bernstein_tensor.h"
+#include "volspline/core/binomial.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/knot_insertion.h"
 

@@ -141,7 +141,7 @@ TEST(JacobianBounds, BernsteinBoundsConvergeQuadratically) {
   JacobianCell cell = sub.roots()[0];
   std::vector<double> distance;
   for (int level = 0; level < 8; ++level) {
-    const BernsteinTensor& c = cell.jacobian.coefficients;
+    const BernsteinTensor<3>& c = cell.jacobian.coefficients;
     const Eigen::Vector3d lo = sub.corner_parameter(cell, 0), hi = sub.corner_parameter(cell, 7);
     double d = 0;
     for (int k = 0; k < c.size(2); ++k)

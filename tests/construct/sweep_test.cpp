@@ -58,10 +58,9 @@ BSplineCurve interpolate(F f, int degree, int spans, double a, double b) {
   const int n = kv.num_basis();
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n), rhs(n, 3);
   std::vector<double> basis(static_cast<std::size_t>(degree + 1));
+  const std::vector<double> sites = kv.greville_abscissae();
   for (int j = 0; j < n; ++j) {
-    double g = 0.0;
-    for (int r = 1; r <= degree; ++r) g += kv.knots()[static_cast<std::size_t>(j + r)];
-    g /= degree;
+    const double g = sites[static_cast<std::size_t>(j)];
     const int span = kv.find_span(g);
     kv.basis(span, g, basis.data());
     for (int r = 0; r <= degree; ++r) m(j, span - degree + r) = basis[static_cast<std::size_t>(r)];

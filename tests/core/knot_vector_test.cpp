@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "support/test_splines.h"
@@ -91,6 +93,40 @@ TEST(KnotVector, RejectsBadKnotsWithTheirIndex) {
   EXPECT_THROW(KnotVector(2, {0, 0, 1, 1}), InvalidInput);        // too few knots
   EXPECT_THROW(KnotVector(1, {0, 1, 1, 1}), InvalidInput);        // multiplicity / empty domain
   EXPECT_THROW(KnotVector(2, {0, 0, 0, 0, 0, 0, 1}), InvalidInput);
+}
+
+// Marsden's identity with linear polynomials: the B-spline whose control points are the Greville
+// abscissae is the identity map t -> t, for clamped and unclamped, uniform and repeated knots.
+TEST(KnotVector, GrevilleAbscissaeReproduceTheIdentity) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int p = 1 + trial % 5;
+    const KnotVector kv = test_support::random_knots(rng, p, 5, trial % 2 == 0, p);
+    const std::vector<double> g = kv.greville_abscissae();
+    ASSERT_EQ(static_cast<int>(g.size()), kv.num_basis());
+    EXPECT_TRUE(std::is_sorted(g.begin(), g.end()));
+    std::uniform_real_distribution<double> u(kv.domain_min(), kv.domain_max());
+    std::vector<double> N(static_cast<std::size_t>(p + 1));
+    for (int n = 0; n < 50; ++n) {
+      const double t = n == 0 ? kv.domain_min() : n == 1 ? kv.domain_max() : u(rng);
+      const int span = kv.find_span(t);
+      kv.basis(span, t, N.data());
+      double x = 0;
+      for (int r = 0; r <= p; ++r) x += N[static_cast<std::size_t>(r)] * g[static_cast<std::size_t>(span - p + r)];
+      EXPECT_NEAR(x, t, 1e-14 * (1 + std::abs(t))) << "trial " << trial;
+    }
+  }
+  // On a Bézier segment they are i / p (Lasser 1994, eq. 11).
+  const auto bezier = KnotVector::bezier(3).greville_abscissae();
+  EXPECT_EQ(bezier, (std::vector<double>{0.0, 1.0 / 3, 2.0 / 3, 1.0}));
+}
+
+TEST(KnotVector, FactoriesRejectBadDegreesAndSpans) {
+  EXPECT_THROW(KnotVector::bezier(0), InvalidInput);
+  EXPECT_THROW(KnotVector::bezier(-5), InvalidInput);
+  EXPECT_THROW(KnotVector::uniform_clamped(-3, 2), InvalidInput);
+  EXPECT_THROW(KnotVector::uniform_clamped(2, 0), InvalidInput);
+  EXPECT_THROW(KnotVector::bezier(2, 1.0, 1.0), InvalidInput);
 }
 
 }  // namespace

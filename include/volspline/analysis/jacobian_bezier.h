@@ -21,7 +21,7 @@ struct JacobianBernstein {
   /// P_w] (columns w, wx, wy, wz). Local parameters [0, 1]^3 over the cell; the derivatives are
   /// taken with respect to the global parameters, so the polynomial equals J (or w^4 J) at the
   /// corresponding global point.
-  BernsteinTensor coefficients;
+  BernsteinTensor<3> coefficients;
   /// |computed coefficient - exact coefficient| <= error_bound for every coefficient, where
   /// "exact" is the cell whose control points are within the `input_error` given of the ones
   /// stored.
@@ -29,7 +29,7 @@ struct JacobianBernstein {
   /// True for a rational cell: coefficients are those of w^4 J and `weights` holds w.
   bool homogeneous = false;
   /// Bernstein form of the weight function w (degree (p, q, r)); empty for a polynomial cell.
-  BernsteinTensor weights;
+  BernsteinTensor<3> weights;
 };
 
 /// Bernstein coefficients of J over a single Bézier cell of a volume in R^3 (every knot vector a

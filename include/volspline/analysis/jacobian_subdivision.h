@@ -6,7 +6,7 @@
 // Cells live on a dyadic lattice: along each direction, coordinate c * 2^kMaxLevel + m *
 // 2^(kMaxLevel - level) is the m-th subdivision point of piece c at that level. Equal lattice
 // coordinates mean bitwise-equal points, which is what makes the tetrahedral meshes built on the
-// cells (analysis/jacobian_zero_surface.h) conforming.
+// cells (jacobian_zero_surface in extract/solid_boundary.h) conforming.
 #include <array>
 #include <cstdint>
 #include <utility>
@@ -37,8 +37,8 @@ struct JacobianCell {
   /// Bezier method: J (or w^4 J for a rational volume) on the cell. Its error_bound covers
   /// extraction and every split since.
   JacobianBernstein jacobian;
-  /// Cone method: the cell's x, y, z in Bernstein form.
-  std::array<BernsteinTensor, 3> geometry;
+  /// Cone method: the cell's points (x, y, z) in Bernstein form (three components).
+  BernsteinTensor<3> geometry;
   /// A certified interval containing sign-equivalent J (w^4 J for rational volumes) on the cell.
   double lower = 0, upper = 0;
 

@@ -13,8 +13,11 @@ class KnotVector {
   KnotVector(int degree, std::vector<double> knots);
 
   /// The knot vector of a Bézier segment on [a, b]: p+1 copies of a, then p+1 copies of b.
+  /// \throw InvalidInput as the constructor (degree < 1, a or b not finite, or a >= b).
   static KnotVector bezier(int degree, double a = 0.0, double b = 1.0);
   /// Clamped, uniformly spaced interior knots: `spans` equal spans on [a, b].
+  /// \throw InvalidInput if spans < 1, or as the constructor (degree < 1, a or b not finite, or
+  /// a >= b).
   static KnotVector uniform_clamped(int degree, int spans, double a = 0.0, double b = 1.0);
 
   int degree() const { return degree_; }
@@ -51,6 +54,10 @@ class KnotVector {
   int num_spans() const { return static_cast<int>(breakpoints().size()) - 1; }
   /// Multiplicity of the knot value t (0 if t is not a knot).
   int multiplicity(double t) const;
+  /// The Greville abscissae g_i = (t_{i+1} + ... + t_{i+p}) / p, one per basis function: the
+  /// coefficients with which the basis reproduces the linear function t (Marsden's identity),
+  /// so control points placed at them give the identity map; i / p on the Bézier segment [0, 1].
+  std::vector<double> greville_abscissae() const;
 
   friend bool operator==(const KnotVector& a, const KnotVector& b) {
     return a.degree_ == b.degree_ && a.knots_ == b.knots_;

@@ -15,6 +15,7 @@ struct FfdExample {
   Lattice lattice;
 };
 
+/// Every input is a constant, so this throws nothing but std::bad_alloc.
 FfdExample bent_bar_ffd_example();
 
 }  // namespace volspline
