@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "volspline/core/error.h"
 
@@ -51,16 +52,28 @@ std::array<int, D> sizes_of(const std::array<int, D>& degrees) {
 template <int D>
 void scale_coefficients(TensorCoefficients<D>& f, bool divide) {
   const std::size_t c = static_cast<std::size_t>(f.components);
+  // One table row per direction, looked up once (this runs for every product of the Jacobian).
+  // Degrees beyond the table (never reached by models: kMaxModelDegree) take the product formula.
+  std::array<std::vector<double>, D> beyond;
+  std::array<const double*, D> rows{};
+  for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
+    if (f.degrees[d] <= kBinomialTableOrder) {
+      rows[d] = binomial_row(f.degrees[d]);
+    } else {
+      for (int k = 0; k <= f.degrees[d]; ++k) beyond[d].push_back(binomial_coefficient(f.degrees[d], k));
+      rows[d] = beyond[d].data();
+    }
+  }
   std::size_t linear = 0;
   for_each_index<D>(sizes_of<D>(f.degrees), [&](const std::array<int, D>& a) {
     double* x = f.coefficients.data() + linear * c;
     if (divide) {
       double b = 1;
-      for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) b *= binomial_coefficient(f.degrees[d], a[d]);
+      for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) b *= rows[d][a[d]];
       for (std::size_t k = 0; k < c; ++k) x[k] /= b;
     } else {
       for (std::size_t k = 0; k < c; ++k) {
-        for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) x[k] *= binomial_coefficient(f.degrees[d], a[d]);
+        for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) x[k] *= rows[d][a[d]];
       }
     }
     ++linear;

@@ -1,7 +1,10 @@
 #include "volspline/core/binomial.h"
 
 #include <cstddef>
+#include <string>
 #include <vector>
+
+#include "volspline/core/error.h"
 
 namespace volspline {
 
@@ -30,6 +33,13 @@ double binomial_coefficient(int n, int k) {
   double b = 1.0;
   for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
   return b;
+}
+
+const double* binomial_row(int n) {
+  if (n < 0 || n > kBinomialTableOrder) {
+    throw InvalidInput("binomial_row: row " + std::to_string(n) + " is outside the table (0.." + std::to_string(kBinomialTableOrder) + ")");
+  }
+  return pascal_triangle().data() + static_cast<std::size_t>(n * (n + 1) / 2);
 }
 
 }  // namespace volspline

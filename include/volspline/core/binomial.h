@@ -14,4 +14,8 @@ inline constexpr int kBinomialTableOrder = 256;
 /// rounded entries (relative error below n u). Beyond the table, the product formula.
 double binomial_coefficient(int n, int k);
 
+/// Row n of the table, C(n, 0..n), for 0 <= n <= kBinomialTableOrder: for loops over one degree,
+/// which then look coefficients up without a call each. \throw InvalidInput for other n.
+const double* binomial_row(int n);
+
 }  // namespace volspline
