@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "derivative_table.h"
+#include "volspline/core/binomial.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/tensor_spline.h"
 
@@ -43,7 +44,7 @@ std::unique_ptr<DerivativeTable<D>> build_derivative_table(int order) {
         const auto dd = static_cast<std::size_t>(d);
         if (beta[dd] > alpha[dd]) below = false;
         rest[dd] = alpha[dd] - beta[dd];
-        for (int i = 0; i < beta[dd]; ++i) binomial = binomial * (alpha[dd] - i) / (i + 1);
+        if (beta[dd] <= alpha[dd]) binomial *= binomial_coefficient(alpha[dd], beta[dd]);
       }
       if (!below) continue;
       table->leibniz[a].push_back({static_cast<int>(b),

@@ -24,9 +24,9 @@ const char* kSphere = R"({"volspline_scene": 1, "spacing": 0.25, "box": {"min": 
   "root": {"sphere": {"center": [0, 0, 0], "radius": 0.7}}})";
 
 TEST(BlendCli, WritesMeshPictureAndStatistics) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   write_text(dir / "sphere.json", kSphere);
-  const auto r = test::run_cli("blend " + (dir / "sphere.json").string() + " -o " + (dir / "s.ply").string() + " --png " +
+  const auto r = test_support::run_cli("blend " + (dir / "sphere.json").string() + " -o " + (dir / "s.ply").string() + " --png " +
                                    (dir / "s.png").string() + " --stats " + (dir / "s.json").string() +
                                    " --method exact --project --levels 1",
                                dir.path());
@@ -43,10 +43,10 @@ TEST(BlendCli, WritesMeshPictureAndStatistics) {
 TEST(BlendCli, WritesBinaryGltfWithTheTrianglesOfThePly) {
   // The same scene written as .ply and as .glb: tinygltf's own loader reads the .glb back, and
   // its index count is three per triangle of the .ply; positions agree as floats.
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const std::string scene = std::string(VOLSPLINE_SOURCE_DIR) + "/examples/scenes/scene-two-tori.json";
   for (const char* out : {"s.ply", "s.glb"})
-    ASSERT_EQ(test::run_cli("blend " + scene + " -o " + (dir / out).string() + " --levels 1", dir.path()).code, 0) << out;
+    ASSERT_EQ(test_support::run_cli("blend " + scene + " -o " + (dir / out).string() + " --levels 1", dir.path()).code, 0) << out;
   const TriangleMesh ply = read_mesh(dir / "s.ply");
   ASSERT_GT(ply.num_triangles(), 1000u);
   tinygltf::Model model;
@@ -81,10 +81,10 @@ TEST(BlendCli, WritesBinaryGltfWithTheTrianglesOfThePly) {
 // orange is red well above green above blue. Triangles well inside the box must be orange, those
 // well outside grey (the primitives were once drawn in the blue of the u-isoparametric surfaces).
 TEST(BlendCli, GltfColoursTheSplineOrangeAndThePrimitivesOutsideTheBoxGrey) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const std::string scene = std::string(VOLSPLINE_SOURCE_DIR) + "/examples/scenes/scene-two-tori.json";
   for (const char* out : {"s.ply", "s.glb"})
-    ASSERT_EQ(test::run_cli("blend " + scene + " -o " + (dir / out).string() + " --levels 1", dir.path()).code, 0) << out;
+    ASSERT_EQ(test_support::run_cli("blend " + scene + " -o " + (dir / out).string() + " --levels 1", dir.path()).code, 0) << out;
   const Eigen::Vector3d box_min(-0.75, -1.2, -0.6), box_max(0.75, 1.2, 0.6);  // the scene's box
   const double margin = 0.15;                                                   // the lattice spacing
 
@@ -141,9 +141,9 @@ TEST(BlendCli, GltfColoursTheSplineOrangeAndThePrimitivesOutsideTheBoxGrey) {
 }
 
 TEST(BlendCli, ExampleScenesMeshClosed) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   for (const char* name : {"scene-cylinder-intersection", "scene-two-tori"}) {
-    const auto r = test::run_cli(std::string("blend ") + VOLSPLINE_SOURCE_DIR + "/examples/scenes/" + name + ".json -o " +
+    const auto r = test_support::run_cli(std::string("blend ") + VOLSPLINE_SOURCE_DIR + "/examples/scenes/" + name + ".json -o " +
                                      (dir / "out.stl").string() + " --stats " + (dir / "s.json").string(),
                                  dir.path());
     ASSERT_EQ(r.code, 0) << r.err;
@@ -152,7 +152,7 @@ TEST(BlendCli, ExampleScenesMeshClosed) {
 }
 
 TEST(BlendCli, BadScenesExitWithTwoAndSayWhere) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const std::string head = R"({"volspline_scene": 1, )";
   const std::string box = R"("box": {"min": [0, 0, 0], "max": [1, 1, 1]}, )";
   const std::string sphere = R"("root": {"sphere": {"center": [0, 0, 0], "radius": 1}}})";
@@ -167,16 +167,16 @@ TEST(BlendCli, BadScenesExitWithTwoAndSayWhere) {
   };
   for (const auto& [text, message] : cases) {
     write_text(dir / "bad.json", text);
-    const auto r = test::run_cli("blend " + (dir / "bad.json").string() + " -o " + (dir / "out.ply").string(), dir.path());
+    const auto r = test_support::run_cli("blend " + (dir / "bad.json").string() + " -o " + (dir / "out.ply").string(), dir.path());
     EXPECT_EQ(r.code, 2) << text;
     EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.ply"));
   }
   write_text(dir / "ok.json", kSphere);
-  EXPECT_EQ(test::run_cli("blend " + (dir / "ok.json").string() + " -o out.xyz", dir.path()).code, 2);
-  EXPECT_EQ(test::run_cli("blend " + (dir / "ok.json").string() + " -o out.ply --method magic", dir.path()).code, 2);
-  EXPECT_EQ(test::run_cli("blend " + (dir / "ok.json").string() + " -o out.ply --project", dir.path()).code, 2);
-  EXPECT_EQ(test::run_cli("blend " + (dir / "missing.json").string() + " -o out.ply", dir.path()).code, 2);
+  EXPECT_EQ(test_support::run_cli("blend " + (dir / "ok.json").string() + " -o out.xyz", dir.path()).code, 2);
+  EXPECT_EQ(test_support::run_cli("blend " + (dir / "ok.json").string() + " -o out.ply --method magic", dir.path()).code, 2);
+  EXPECT_EQ(test_support::run_cli("blend " + (dir / "ok.json").string() + " -o out.ply --project", dir.path()).code, 2);
+  EXPECT_EQ(test_support::run_cli("blend " + (dir / "missing.json").string() + " -o out.ply", dir.path()).code, 2);
 }
 
 }  // namespace

@@ -22,13 +22,13 @@
 namespace volspline {
 namespace {
 
-using Result = test::CliResult;
+using Result = test_support::CliResult;
 
-Result run(const std::string& args, const std::filesystem::path& dir) { return test::run_cli(args, dir); }
+Result run(const std::string& args, const std::filesystem::path& dir) { return test_support::run_cli(args, dir); }
 
 class Cli : public ::testing::Test {
  protected:
-  test::TemporaryDirectory tmp;
+  test_support::TemporaryDirectory tmp;
   std::filesystem::path dir() const { return tmp.path(); }
   std::string write(const std::string& name, const std::string& text) {
     const auto p = dir() / name;

@@ -20,14 +20,14 @@ namespace {
 
 class ConvertFormats : public ::testing::Test {
  protected:
-  test::TemporaryDirectory tmp;
+  test_support::TemporaryDirectory tmp;
   std::string path(const std::string& name) const { return (tmp / name).string(); }
-  test::CliResult run(const std::string& args) const { return test::run_cli(args, tmp.path()); }
+  test_support::CliResult run(const std::string& args) const { return test_support::run_cli(args, tmp.path()); }
 };
 
 TEST_F(ConvertFormats, AChainThroughEveryFormatKeepsTheGeometry) {
   std::mt19937 rng(1);
-  Model model = test::random_exchange_model(rng);
+  Model model = test_support::random_exchange_model(rng);
   for (auto& object : model.objects) object.name.clear();
   write_model(model, path("start.json"));
   ASSERT_EQ(run("convert " + path("start.json") + " -o " + path("a.xml")).code, 0);
@@ -36,7 +36,7 @@ TEST_F(ConvertFormats, AChainThroughEveryFormatKeepsTheGeometry) {
   ASSERT_EQ(last.code, 0) << last.err;
   EXPECT_NE(last.out.find("wrote"), std::string::npos);
   const Model back = read_model(path("c.json"));
-  EXPECT_LE(test::max_model_difference(model, back, rng, false), 1e-12);
+  EXPECT_LE(test_support::max_model_difference(model, back, rng, false), 1e-12);
   // Every format reads what it wrote, also through the table.
   for (const ModelFormat& format : model_formats()) {
     const Model again = read_model_file(path("c.json"));
@@ -48,24 +48,24 @@ TEST_F(ConvertFormats, AChainThroughEveryFormatKeepsTheGeometry) {
       for (const auto& object : again.objects) std::visit([&](const auto& s) { cells += bezier_pieces(s).size(); }, object.spline);
       EXPECT_EQ(read.objects.size(), cells);
     } else {
-      EXPECT_LE(test::max_model_difference(again, read, rng, false), 1e-12) << format.name;
+      EXPECT_LE(test_support::max_model_difference(again, read, rng, false), 1e-12) << format.name;
     }
   }
 }
 
 TEST_F(ConvertFormats, AttributesFollowKnotInsertionAndBezierSplitting) {
   std::mt19937 rng(2);
-  Model model = test::random_exchange_model(rng);
+  Model model = test_support::random_exchange_model(rng);
   model.objects.erase(model.objects.begin(), model.objects.begin() + 4);  // the two volumes
   write_model(model, path("v.json"));
   const auto result = run("convert " + path("v.json") + " -o " + path("r.json") + " --insert-knots u:0.3,0.7 --elevate w:1");
   ASSERT_EQ(result.code, 0) << result.err;
-  EXPECT_LE(test::max_model_difference(model, read_model(path("r.json")), rng, true), 1e-12);
+  EXPECT_LE(test_support::max_model_difference(model, read_model(path("r.json")), rng, true), 1e-12);
 }
 
 TEST_F(ConvertFormats, FormatOptionOverridesTheExtension) {
   std::mt19937 rng(3);
-  write_model(test::random_exchange_model(rng), path("m.json"));
+  write_model(test_support::random_exchange_model(rng), path("m.json"));
   ASSERT_EQ(run("convert " + path("m.json") + " -o " + path("m.txt") + " --format irit").code, 0);
   EXPECT_EQ(std::ifstream(path("m.txt")).get(), '#');
   ASSERT_EQ(run("convert " + path("m.txt") + " --input-format itd -o " + path("n.json")).code, 0);
@@ -101,7 +101,7 @@ TEST_F(ConvertFormats, BadFilesExitWithTwoAndNameFileAndLine) {
 
 TEST_F(ConvertFormats, MeshCommandsWriteGlb) {
   std::mt19937 rng(4);
-  Model model = test::random_exchange_model(rng);
+  Model model = test_support::random_exchange_model(rng);
   model.objects.erase(model.objects.begin(), model.objects.begin() + 4);
   write_model(model, path("v.json"));
   const auto result = run("faces " + path("v.json") + " -o " + path("faces.glb") + " --resolution 4");

@@ -32,7 +32,7 @@ TEST(Gallery, EscapesTextAndLinksPicturesRelatively) {
     EXPECT_TRUE(std::regex_match((*it)[2].str(), std::regex("!DOCTYPE|html|head|meta|title|style|body|h1|h2|p|section|div|a|img|pre|code")))
         << (*it)[0];
   EXPECT_EQ(g.entries().size(), 2u);
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   g.write(dir.path());
   EXPECT_EQ(read_file(dir.path() / "index.html"), html);
   EXPECT_THROW(g.write(dir.path() / "missing"), IoError);

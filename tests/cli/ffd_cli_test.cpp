@@ -21,14 +21,14 @@
 namespace volspline {
 namespace {
 
-using Result = test::CliResult;
+using Result = test_support::CliResult;
 
 class FfdCli : public ::testing::Test {
  protected:
-  test::TemporaryDirectory tmp;
+  test_support::TemporaryDirectory tmp;
   std::string path(const std::string& name) const { return (tmp / name).string(); }
   Result run(const std::string& args) const {
-    return test::run_cli(args, tmp.path());
+    return test_support::run_cli(args, tmp.path());
   }
 };
 
@@ -41,7 +41,7 @@ TEST_F(FfdCli, HelpListsBothCommands) {
 }
 
 TEST_F(FfdCli, UndeformedLatticeGivesBackTheMesh) {
-  const TriangleMesh sphere = test::icosphere(2);
+  const TriangleMesh sphere = test_support::icosphere(2);
   write_mesh(sphere, path("sphere.ply"));
   for (const std::string options : {"--degree 3,3,3", "--degree 2,3,1 --divisions 3,2,4 --margin 0.2 --axes 1,0.2,0,0.3,1,0,0,0.1,1"}) {
     auto r = run("lattice " + path("sphere.ply") + " " + options + " -o " + path("lattice.json"));
@@ -58,7 +58,7 @@ TEST_F(FfdCli, UndeformedLatticeGivesBackTheMesh) {
 }
 
 TEST_F(FfdCli, MovedControlPointMovesTheMeshAsTheLibraryDoes) {
-  write_mesh(test::icosphere(2), path("sphere.obj"));
+  write_mesh(test_support::icosphere(2), path("sphere.obj"));
   ASSERT_EQ(run("lattice " + path("sphere.obj") + " --degree 2,2,2 -o " + path("lattice.json")).code, 0);
   Model model = read_model(path("lattice.json"));
   const auto& v = std::get<BSplineVolume>(model.objects[0].spline);
@@ -109,7 +109,7 @@ TEST_F(FfdCli, SplineCurvesAreComposedExactly) {
 }
 
 TEST_F(FfdCli, BadInputIsExitCode2WithAMessage) {
-  write_mesh(test::unit_cube(), path("cube.obj"));
+  write_mesh(test_support::unit_cube(), path("cube.obj"));
   std::ofstream(path("broken.obj")) << "v 0 0 0\nf 1 2 3\n";
   std::ofstream(path("plain.json")) << R"({"volspline": 1, "objects": [{"type": "bezier_volume", "degree": [1, 1, 1],
     "control_points": [[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],[1,1,1]]}]})";

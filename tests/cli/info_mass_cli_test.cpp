@@ -23,8 +23,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-using Result = test::CliResult;
-using test::run_cli;
+using Result = test_support::CliResult;
+using test_support::run_cli;
 
 /// The box [x0, x0 + a] x [y0, y0 + b] x [z0, z0 + c] as a trilinear volume.
 BSplineVolume box(double x0, double y0, double z0, double a, double b, double c) {
@@ -41,7 +41,7 @@ BSplineSurface square() {
 
 class InfoMass : public ::testing::Test {
  protected:
-  test::TemporaryDirectory tmp;
+  test_support::TemporaryDirectory tmp;
   std::string write(const Model& m) {
     const auto p = tmp.path() / "model.json";
     write_model(m, p);

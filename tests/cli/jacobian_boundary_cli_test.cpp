@@ -12,10 +12,10 @@
 namespace volspline {
 namespace {
 
-using test::run_cli;
+using test_support::run_cli;
 
 TEST(JacobianCli, JsonVerdictsAndFailInvalid) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const auto folded = (dir.path() / "loft.json").string(), box = (dir.path() / "box.json").string();
   ASSERT_EQ(run_cli("make twisted-loft -o " + folded, dir.path()).code, 0);
   ASSERT_EQ(run_cli("make box --size 1,2,3 -o " + box, dir.path()).code, 0);
@@ -41,7 +41,7 @@ TEST(JacobianCli, JsonVerdictsAndFailInvalid) {
 }
 
 TEST(BoundaryCli, MeshStatsAndPictureTogether) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const auto model = (dir.path() / "patch.json").string();
   ASSERT_EQ(run_cli("make swept-patch -o " + model, dir.path()).code, 0);
   const auto out = (dir.path() / "b.ply").string(), stats = (dir.path() / "s.json").string(), png = (dir.path() / "b.png").string();
@@ -64,7 +64,7 @@ TEST(BoundaryCli, MeshStatsAndPictureTogether) {
 }
 
 TEST(BoundaryCli, BadInputLeavesNothingBehind) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const auto model = (dir.path() / "patch.json").string();
   ASSERT_EQ(run_cli("make swept-patch -o " + model, dir.path()).code, 0);
   const auto out = (dir.path() / "b.ply").string();

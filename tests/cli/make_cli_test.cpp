@@ -17,15 +17,15 @@
 namespace volspline {
 namespace {
 
-using Result = test::CliResult;
+using Result = test_support::CliResult;
 
 class MakeCli : public ::testing::Test {
  protected:
-  test::TemporaryDirectory tmp;
+  test_support::TemporaryDirectory tmp;
   std::string path(const std::string& name) const { return (tmp.path() / name).string(); }
 
   Result run(const std::string& args) const {
-    return test::run_cli(args, tmp.path());
+    return test_support::run_cli(args, tmp.path());
   }
 
   template <int D>

@@ -33,14 +33,14 @@ void expect_close(const std::vector<double>& a, const std::vector<double>& b, do
 
 class ModelInput : public ::testing::Test {
  protected:
-  test::TemporaryDirectory tmp;
+  test_support::TemporaryDirectory tmp;
   std::filesystem::path written(const std::string& name) {
     Model m;
     m.objects.push_back({"twisted-loft", false, twisted_loft(), nullptr});
     write_model_file(m, tmp.path() / name);
     return tmp.path() / name;
   }
-  test::CliResult run(const std::string& args) { return test::run_cli(args, tmp.path()); }
+  test_support::CliResult run(const std::string& args) { return test_support::run_cli(args, tmp.path()); }
 };
 
 TEST_F(ModelInput, EvalFacesInfoReadGismoAndIrit) {

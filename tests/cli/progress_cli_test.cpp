@@ -35,7 +35,7 @@ class ScopedEnv {
 
 class ProgressCli : public ::testing::Test {
  protected:
-  test::TemporaryDirectory tmp;
+  test_support::TemporaryDirectory tmp;
   std::string model() {
     Model m;
     m.objects.push_back({"twisted-loft", false, twisted_loft(), nullptr});
@@ -123,7 +123,7 @@ TEST(ProgressReporter, VerboseTimingsAndLabels) {
 }
 
 TEST_F(ProgressCli, NoBarWhenStderrIsNotATerminal) {
-  const auto r = test::run_cli("boundary " + model() + " -o " + out("b.ply"), tmp.path());
+  const auto r = test_support::run_cli("boundary " + model() + " -o " + out("b.ply"), tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");
 }
@@ -131,17 +131,17 @@ TEST_F(ProgressCli, NoBarWhenStderrIsNotATerminal) {
 TEST_F(ProgressCli, VerbosePrintsPhaseTimingsBeforeOrAfterTheSubcommand) {
   const std::string in = model();
   for (const std::string& args : {"-v boundary " + in + " -o " + out("b.ply"), "boundary " + in + " -o " + out("b.ply") + " --verbose"}) {
-    const auto r = test::run_cli(args, tmp.path());
+    const auto r = test_support::run_cli(args, tmp.path());
     ASSERT_EQ(r.code, 0) << r.err;
     for (const char* phase : {"reading", "subdivision", "tetrahedra", "marching", "mapping", "faces", "writing", "total"})
       EXPECT_TRUE(std::regex_search(r.err, std::regex(std::string("(^|\n)volspline: ") + phase + " [0-9]+\\.[0-9]{3} s\n")))
           << phase << "\n" << r.err;
     EXPECT_EQ(r.err.find('\r'), std::string::npos);
   }
-  const auto j = test::run_cli("-v jacobian " + in, tmp.path());
+  const auto j = test_support::run_cli("-v jacobian " + in, tmp.path());
   EXPECT_EQ(j.code, 0) << j.err;
   EXPECT_NE(j.err.find("volspline: certification "), std::string::npos) << j.err;
-  const auto c = test::run_cli("-v convert " + in + " -o " + out("c.xml"), tmp.path());
+  const auto c = test_support::run_cli("-v convert " + in + " -o " + out("c.xml"), tmp.path());
   EXPECT_EQ(c.code, 0) << c.err;
   for (const char* phase : {"reading", "converting", "writing"}) EXPECT_NE(c.err.find(std::string("volspline: ") + phase), std::string::npos) << c.err;
 }
@@ -149,7 +149,7 @@ TEST_F(ProgressCli, VerbosePrintsPhaseTimingsBeforeOrAfterTheSubcommand) {
 TEST_F(ProgressCli, QuietSaysNothingOnStderrEvenWhenTheBarIsForced) {
   const ScopedEnv always("VOLSPLINE_PROGRESS", "always");
   const ScopedEnv delay("VOLSPLINE_PROGRESS_DELAY", "0");
-  const auto r = test::run_cli("-q boundary " + model() + " -o " + out("b.ply"), tmp.path());
+  const auto r = test_support::run_cli("-q boundary " + model() + " -o " + out("b.ply"), tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   EXPECT_NE(r.out.find("wrote"), std::string::npos);  // stdout is unchanged
@@ -157,19 +157,19 @@ TEST_F(ProgressCli, QuietSaysNothingOnStderrEvenWhenTheBarIsForced) {
   std::ofstream(tmp.path() / "far.json") << R"({"volspline_scene": 1, "spacing": 0.25, "box": {"min": [-1, -1, -1], "max": [1, 1, 1]},
       "root": {"sphere": {"center": [0, 0, 0], "radius": 5}}})";
   const std::string blend = "blend " + (tmp.path() / "far.json").string() + " -o " + out("far.ply");
-  const auto loud = test::run_cli("--verbose " + blend, tmp.path());
+  const auto loud = test_support::run_cli("--verbose " + blend, tmp.path());
   EXPECT_EQ(loud.code, 0);
   EXPECT_NE(loud.err.find("volspline: warning: the zero set does not cross"), std::string::npos) << loud.err;
-  const auto quiet = test::run_cli(blend + " --quiet", tmp.path());
+  const auto quiet = test_support::run_cli(blend + " --quiet", tmp.path());
   EXPECT_EQ(quiet.code, 0);
   EXPECT_EQ(quiet.err, "");
-  EXPECT_EQ(test::run_cli("-q -v " + blend, tmp.path()).code, 2);  // they exclude each other
+  EXPECT_EQ(test_support::run_cli("-q -v " + blend, tmp.path()).code, 2);  // they exclude each other
 }
 
 TEST_F(ProgressCli, ForcedBarRewritesOneLineAndEndsErased) {
   const ScopedEnv always("VOLSPLINE_PROGRESS", "always");
   const ScopedEnv delay("VOLSPLINE_PROGRESS_DELAY", "0");
-  const auto r = test::run_cli("boundary " + model() + " -o " + out("b.ply"), tmp.path());
+  const auto r = test_support::run_cli("boundary " + model() + " -o " + out("b.ply"), tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string& e = r.err;
   EXPECT_NE(e.find("\rvolspline: reading"), std::string::npos) << e;  // the first phase, drawn at once
@@ -180,7 +180,7 @@ TEST_F(ProgressCli, ForcedBarRewritesOneLineAndEndsErased) {
   ASSERT_NE(last, std::string::npos);
   EXPECT_EQ(e.substr(last + 1, e.size() - last - 2).find_first_not_of(' '), std::string::npos) << "not erased at the end";
   // And an error still comes out on a line of its own after the bar is gone.
-  const auto bad = test::run_cli("boundary " + (tmp.path() / "missing.json").string() + " -o " + out("m.ply"), tmp.path());
+  const auto bad = test_support::run_cli("boundary " + (tmp.path() / "missing.json").string() + " -o " + out("m.ply"), tmp.path());
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("volspline: error:"), std::string::npos) << bad.err;
 }

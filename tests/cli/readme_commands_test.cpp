@@ -54,7 +54,7 @@ TEST(ReadmeCommands, EveryCommandRunsAsWritten) {
   const std::vector<std::string> lines = readme_command_lines(text.str());
   ASSERT_GE(lines.size(), 8u) << "the README's examples were not found";
 
-  test::TemporaryDirectory clone;
+  test_support::TemporaryDirectory clone;
   std::filesystem::copy(std::string(VOLSPLINE_SOURCE_DIR) + "/examples", clone.path() / "examples",
                         std::filesystem::copy_options::recursive);
   const std::filesystem::path scratch = clone.path() / "tmp";

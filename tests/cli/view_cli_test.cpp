@@ -13,7 +13,7 @@
 namespace volspline {
 namespace {
 
-using test::run_cli;
+using test_support::run_cli;
 
 const std::string kTorus = std::string(VOLSPLINE_SOURCE_DIR) + "/examples/torus-temperature.json";
 
@@ -56,7 +56,7 @@ void expect_sensible_picture(const std::filesystem::path& path, int width, int h
 }
 
 TEST(ViewCli, EveryProbeGivesASensiblePicture) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const std::vector<std::string> probes{"",
                                         "--iso w:4 --color w",
                                         "--iso u:3 --iso v:2",
@@ -79,7 +79,7 @@ TEST(ViewCli, EveryProbeGivesASensiblePicture) {
 }
 
 TEST(ViewCli, MeshCarriesTheFieldAndSlicesLieInTheirPlanes) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const auto png = dir.path() / "s.png", ply = dir.path() / "s.ply", glb = dir.path() / "s.glb";
   auto r = run_cli("view " + kTorus + " -o " + png.string() + " --slices x:2 --color temperature --mesh " + ply.string() +
                        " --size 200,150",
@@ -98,7 +98,7 @@ TEST(ViewCli, MeshCarriesTheFieldAndSlicesLieInTheirPlanes) {
 }
 
 TEST(ViewCli, BadInputExitsTwoAndWritesNothing) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const auto png = (dir.path() / "x.png").string(), mesh = (dir.path() / "x.ply").string();
   const std::vector<std::pair<std::string, std::string>> cases{
       {"--iso q:3", "--iso"},

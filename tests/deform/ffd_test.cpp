@@ -91,7 +91,7 @@ TEST(Ffd, LatticeCoordinatesSolveEquation10) {
 
 TEST(Ffd, DeformMeshEqualsPointwiseDeformation) {
   std::mt19937 rng(3);
-  const TriangleMesh sphere = test::icosphere(3);
+  const TriangleMesh sphere = test_support::icosphere(3);
   const Lattice lattice = perturbed(undeformed_lattice(sphere, {3, 2, 3}, {2, 3, 1}, 0.05, skew_directions()), rng, 0.2, true);
   // Some vertices outside the lattice box too.
   TriangleMesh mesh = sphere;
@@ -231,7 +231,7 @@ TEST(Ffd, CompositionRejectsObjectsOutsideTheDomainAndHugeDegrees) {
 }
 
 TEST(Ffd, NonFinitePointsAreBadInput) {
-  const Lattice lattice = undeformed_lattice(test::unit_cube(), {1, 1, 1});
+  const Lattice lattice = undeformed_lattice(test_support::unit_cube(), {1, 1, 1});
   EXPECT_THROW(deform_point(lattice, Eigen::Vector3d(NAN, 0, 0)), InvalidInput);
   EXPECT_THROW(deform_points(lattice, {Eigen::Vector3d(0, INFINITY, 0)}), InvalidInput);
 }

@@ -23,7 +23,7 @@ std::string error_of(const std::function<void()>& f) {
 }
 
 TEST(Lattice, ControlPointsOfABezierLatticeAreEquation11) {
-  const TriangleMesh cube = test::unit_cube();
+  const TriangleMesh cube = test_support::unit_cube();
   const Lattice lattice = undeformed_lattice(cube, {3, 2, 1}, {1, 1, 1}, 0.0);
   EXPECT_EQ(lattice.origin, Eigen::Vector3d::Zero());
   EXPECT_EQ(lattice.axes, Eigen::Matrix3d::Identity());
@@ -38,7 +38,7 @@ TEST(Lattice, ControlPointsOfABezierLatticeAreEquation11) {
 }
 
 TEST(Lattice, MarginAndDirections) {
-  const TriangleMesh cube = test::unit_cube();
+  const TriangleMesh cube = test_support::unit_cube();
   const Lattice lattice = undeformed_lattice(cube, {1, 1, 1}, {1, 1, 1}, 0.25);
   EXPECT_TRUE(lattice.origin.isApprox(Eigen::Vector3d::Constant(-0.25)));
   EXPECT_TRUE(lattice.axes.isApprox(1.5 * Eigen::Matrix3d::Identity()));
@@ -58,7 +58,7 @@ TEST(Lattice, MarginAndDirections) {
 TEST(Lattice, ModelFileRoundTripIsBitExact) {
   Eigen::Matrix3d directions;
   directions << 1, 0.3, 0, 0.1, 1, 0.2, 0, -0.4, 1;
-  const Lattice lattice = undeformed_lattice(test::icosphere(1), {2, 3, 1}, {2, 1, 3}, 0.1, directions);
+  const Lattice lattice = undeformed_lattice(test_support::icosphere(1), {2, 3, 1}, {2, 1, 3}, 0.1, directions);
   const Model model = parse_model(model_to_json(lattice_to_model(lattice)), "lattice.json");
   EXPECT_FALSE(model.objects[0].bezier);  // segmented
   const Lattice back = lattice_from_model(model, "lattice.json");
@@ -66,12 +66,12 @@ TEST(Lattice, ModelFileRoundTripIsBitExact) {
   EXPECT_EQ(back.axes, lattice.axes);
   EXPECT_EQ(back.volume.points(), lattice.volume.points());
   for (int d = 0; d < 3; ++d) EXPECT_EQ(back.volume.knot_vector(d), lattice.volume.knot_vector(d));
-  const Lattice bezier = undeformed_lattice(test::unit_cube(), {2, 2, 2});
+  const Lattice bezier = undeformed_lattice(test_support::unit_cube(), {2, 2, 2});
   EXPECT_TRUE(lattice_to_model(bezier).objects[0].bezier);
 }
 
 TEST(Lattice, ModelErrorsNameFileAndPath) {
-  const Model good = lattice_to_model(undeformed_lattice(test::unit_cube(), {1, 1, 1}));
+  const Model good = lattice_to_model(undeformed_lattice(test_support::unit_cube(), {1, 1, 1}));
   auto with = [&](const std::function<void(Model&)>& change) {
     Model m = good;
     change(m);

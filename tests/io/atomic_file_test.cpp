@@ -17,7 +17,7 @@ namespace {
 std::string contents(const std::filesystem::path& path) { return read_file(path); }
 
 TEST(AtomicFile, TheTargetAppearsOnlyOnCommitAndAlone) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const auto target = dir / "out.bin";
   {
     AtomicFile file(target);
@@ -31,7 +31,7 @@ TEST(AtomicFile, TheTargetAppearsOnlyOnCommitAndAlone) {
 }
 
 TEST(AtomicFile, WithoutCommitNothingIsLeftAndAnOldTargetIsUntouched) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const auto target = dir / "model.json";
   write_file_atomically(target, "old contents");
   try {
@@ -45,7 +45,7 @@ TEST(AtomicFile, WithoutCommitNothingIsLeftAndAnOldTargetIsUntouched) {
 }
 
 TEST(AtomicFile, CommitReplacesAnExistingFileWhole) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const auto target = dir / "picture.png";
   write_file_atomically(target, std::string(100000, 'a'));
   write_file_atomically(target, "short");
@@ -54,7 +54,7 @@ TEST(AtomicFile, CommitReplacesAnExistingFileWhole) {
 }
 
 TEST(AtomicFile, BinaryBytesRoundTripExactly) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   std::string bytes;
   for (int i = 0; i < 256; ++i) bytes.push_back(static_cast<char>(i));
   bytes += std::string("\r\n\0\n", 4);
@@ -63,7 +63,7 @@ TEST(AtomicFile, BinaryBytesRoundTripExactly) {
 }
 
 TEST(AtomicFile, UnwritablePlacesAreIoErrorsNamingTheFileAndCreateNothing) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const auto missing_folder = dir / "no-such-folder" / "out.ply";
   try {
     AtomicFile file(missing_folder);
@@ -80,7 +80,7 @@ TEST(AtomicFile, UnwritablePlacesAreIoErrorsNamingTheFileAndCreateNothing) {
 }
 
 TEST(AtomicFile, ReadingMissingFilesAndFoldersIsAnIoErrorNamingThePath) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   for (const auto& path : {dir / "absent.json", dir.path()}) {
     try {
       (void)read_file(path);

@@ -183,16 +183,16 @@ TEST(GismoData, FicheraMultipatchKeepsATopologyWhoseInterfacesMatchTheGeometry) 
   const Model back = parse_gismo_xml(gismo_xml_text(model), "back.xml");
   EXPECT_EQ(back.metadata, model.metadata);
   std::mt19937 rng(4);
-  EXPECT_EQ(test::max_model_difference(model, back, rng, false), 0.0);
+  EXPECT_EQ(test_support::max_model_difference(model, back, rng, false), 0.0);
 }
 
 TEST(GismoXml, RoundTripOfCurvesSurfacesAndVolumesIsExact) {
   std::mt19937 rng(5);
   for (const int dimension : {1, 2, 3}) {
-    const Model model = test::random_exchange_model(rng, dimension);
+    const Model model = test_support::random_exchange_model(rng, dimension);
     const std::string text = gismo_xml_text(model);
     const Model back = parse_gismo_xml(text, "x.xml");
-    EXPECT_LE(test::max_model_difference(model, back, rng, false), 1e-12);
+    EXPECT_LE(test_support::max_model_difference(model, back, rng, false), 1e-12);
     for (const char* type : {"\"BSpline\"", "\"Nurbs\"", "\"TensorBSpline2\"", "\"TensorNurbs2\"", "\"TensorBSpline3\"", "\"TensorNurbs3\""}) {
       EXPECT_NE(text.find(std::string("type=") + type), std::string::npos) << type;
     }

@@ -64,7 +64,7 @@ TEST(IritItd, TrivariateListsControlPointsWithUFastest) {
 TEST(IritItd, RoundTripOfCurvesSurfacesAndVolumesIsExact) {
   std::mt19937 rng(2);
   for (const int dimension : {1, 2, 3}) {
-    Model model = test::random_exchange_model(rng, dimension);
+    Model model = test_support::random_exchange_model(rng, dimension);
     model.objects[2].name = "";
     const std::string text = irit_itd_text(model);
     EXPECT_NE(text.find("[TRIVAR BSPLINE"), std::string::npos);
@@ -72,7 +72,7 @@ TEST(IritItd, RoundTripOfCurvesSurfacesAndVolumesIsExact) {
     EXPECT_NE(text.find("[CURVE BSPLINE"), std::string::npos);
     EXPECT_NE(text.find(" P" + std::to_string(dimension) + "\n"), std::string::npos);
     const Model back = parse_irit_itd(text, "r.itd");
-    EXPECT_EQ(test::max_model_difference(model, back, rng, false), 0.0);
+    EXPECT_EQ(test_support::max_model_difference(model, back, rng, false), 0.0);
     EXPECT_EQ(back.objects[0].name, "curve");
     EXPECT_EQ(back.objects[2].name, "");
   }

@@ -37,7 +37,7 @@ std::string curve_with(const std::string& attributes) {
 
 TEST(ModelAttributes, RoundTripEveryBitIncludingSubnormalsAndNegativeZero) {
   std::mt19937 rng(11);
-  Model model = test::random_exchange_model(rng);
+  Model model = test_support::random_exchange_model(rng);
   model.objects[0].attributes["odd"] = std::vector<double>(model.objects[0].attributes["temperature"].size(), -0.0);
   model.objects[0].attributes["odd"][0] = 5e-324;
   model.objects[0].attributes["odd"][1] = 0.1;
@@ -57,7 +57,7 @@ TEST(ModelAttributes, RoundTripEveryBitIncludingSubnormalsAndNegativeZero) {
 
 TEST(ModelAttributes, FilesWithoutAttributesAreWrittenAsBefore) {
   std::mt19937 rng(12);
-  Model model = test::random_exchange_model(rng);
+  Model model = test_support::random_exchange_model(rng);
   for (auto& object : model.objects) object.attributes.clear();
   EXPECT_EQ(model_to_json(model).find("attributes"), std::string::npos);
 }

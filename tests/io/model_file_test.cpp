@@ -232,7 +232,7 @@ TEST(ModelFile, BezierTypesAreWrittenOnlyForUnitSingleSpans) {
 }
 
 TEST(ModelFile, WriteAndReadFile) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   std::mt19937 rng(3);
   Model model{{{"v", false, random_spline<3>(rng, {2, 2, 2}, 2, 3, true), json{{"k", "v"}}}}, json{{"top", 1}}};
   write_model(model, dir / "m.json");
@@ -244,7 +244,7 @@ TEST(ModelFile, WriteAndReadFile) {
 }
 
 TEST(ModelFile, WriteIntoMissingDirectoryThrowsIoErrorAndLeavesNothing) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   const Model model = parse_model(valid_document().dump(), "model.json");
   EXPECT_THROW(write_model(model, dir / "missing" / "m.json"), IoError);
   EXPECT_FALSE(std::filesystem::exists(dir / "missing"));
@@ -252,7 +252,7 @@ TEST(ModelFile, WriteIntoMissingDirectoryThrowsIoErrorAndLeavesNothing) {
 }
 
 TEST(ModelFile, ReadMissingFileThrowsIoError) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   try {
     read_model(dir / "absent.json");
     FAIL() << "no exception";
@@ -262,7 +262,7 @@ TEST(ModelFile, ReadMissingFileThrowsIoError) {
 }
 
 TEST(ModelFile, ErrorsNameTheFileGivenToReadModel) {
-  test::TemporaryDirectory dir;
+  test_support::TemporaryDirectory dir;
   write_file_atomically(dir / "bad.json", "{\"volspline\": 1, \"objects\": []}");
   try {
     read_model(dir / "bad.json");

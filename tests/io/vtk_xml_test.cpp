@@ -53,7 +53,7 @@ Model volume_model(std::mt19937& rng) {
   for (int i = 0; i < t.num_control_points_total(); ++i) z.push_back(t.points()[3 * static_cast<std::size_t>(i) + 2]);
   torus_object.attributes["temperature"] = z;
   model.objects.push_back(torus_object);
-  const Model random = test::random_exchange_model(rng);
+  const Model random = test_support::random_exchange_model(rng);
   model.objects.push_back(random.objects[4]);
   model.objects.push_back(random.objects[5]);
   return model;
@@ -132,7 +132,7 @@ bool vtk_available() {
 }
 
 /// Runs VTK on the file; returns the script's "key value" lines.
-std::map<std::string, std::string> run_vtk(const test::TemporaryDirectory& dir, const Model& model, std::mt19937& rng) {
+std::map<std::string, std::string> run_vtk(const test_support::TemporaryDirectory& dir, const Model& model, std::mt19937& rng) {
   write_vtu(model, dir / "model.vtu");
   std::ofstream(dir / "expected.txt") << expected_values(model, rng);
   std::ofstream(dir / "check.py") << kVtkScript;
@@ -159,7 +159,7 @@ std::size_t total_cells(const Model& model) {
 
 TEST(VtkReader, ReadsRationalAndMultiPieceVolumesAsVolsplineEvaluatesThem) {
   if (!vtk_available()) GTEST_SKIP() << "/usr/bin/python3 cannot import vtk (install python3-vtk9)";
-  const test::TemporaryDirectory dir;
+  const test_support::TemporaryDirectory dir;
   std::mt19937 rng(1);
   const Model model = volume_model(rng);
   const auto result = run_vtk(dir, model, rng);
@@ -173,9 +173,9 @@ TEST(VtkReader, ReadsRationalAndMultiPieceVolumesAsVolsplineEvaluatesThem) {
 
 TEST(VtkReader, ReadsBezierCurvesAndQuadrilateralsToo) {
   if (!vtk_available()) GTEST_SKIP() << "/usr/bin/python3 cannot import vtk (install python3-vtk9)";
-  const test::TemporaryDirectory dir;
+  const test_support::TemporaryDirectory dir;
   std::mt19937 rng(2);
-  const Model model = test::random_exchange_model(rng);
+  const Model model = test_support::random_exchange_model(rng);
   const auto result = run_vtk(dir, model, rng);
   EXPECT_EQ(result.at("types"), "75 77 79");
   EXPECT_LT(std::stod(result.at("max_error")), 1e-12);
@@ -201,7 +201,7 @@ TEST(VtuFile, TheJacobianArrayIsTheDeterminantAtEachControlPointsParameter) {
 
 TEST(VtuFile, OurReaderGivesBackEveryCellAndItsAttributes) {
   std::mt19937 rng(3);
-  const Model model = test::random_exchange_model(rng);
+  const Model model = test_support::random_exchange_model(rng);
   const Model cells = parse_vtu(vtu_text(model), "m.vtu");
   ASSERT_EQ(cells.objects.size(), total_cells(model));
   std::size_t c = 0;

@@ -27,7 +27,7 @@ TriangleMesh flipped(TriangleMesh mesh) {
 }
 
 TEST(EdgeStatistics, ClosedCubeHas18ManifoldConsistentEdges) {
-  const EdgeStatistics s = edge_statistics(test::unit_cube());
+  const EdgeStatistics s = edge_statistics(test_support::unit_cube());
   EXPECT_EQ(s.edges, 18u);  // 12 cube edges + 6 face diagonals
   EXPECT_EQ(s.manifold_edges, 18u);
   EXPECT_EQ(s.boundary_edges, 0u);
@@ -38,7 +38,7 @@ TEST(EdgeStatistics, ClosedCubeHas18ManifoldConsistentEdges) {
 }
 
 TEST(EdgeStatistics, CubeMinusATriangleHasThreeBoundaryEdges) {
-  TriangleMesh cube = test::unit_cube();
+  TriangleMesh cube = test_support::unit_cube();
   cube.triangles.pop_back();
   cube.parts.pop_back();
   const EdgeStatistics s = edge_statistics(cube);
@@ -49,7 +49,7 @@ TEST(EdgeStatistics, CubeMinusATriangleHasThreeBoundaryEdges) {
 }
 
 TEST(EdgeStatistics, OneFlippedTriangleMakesItsThreeEdgesInconsistent) {
-  TriangleMesh cube = test::unit_cube();
+  TriangleMesh cube = test_support::unit_cube();
   std::swap(cube.triangles[5][0], cube.triangles[5][1]);
   const EdgeStatistics s = edge_statistics(cube);
   EXPECT_TRUE(s.closed());
@@ -81,7 +81,7 @@ TEST(EdgeStatistics, EmptyMeshIsNotClosed) {
 
 TEST(EdgeStatistics, SphereSatisfiesEulersFormula) {
   for (int levels = 0; levels <= 3; ++levels) {
-    const TriangleMesh sphere = test::icosphere(levels);
+    const TriangleMesh sphere = test_support::icosphere(levels);
     const EdgeStatistics s = edge_statistics(sphere);
     EXPECT_TRUE(s.closed_and_oriented());
     EXPECT_EQ(static_cast<long>(sphere.num_vertices()) - static_cast<long>(s.edges) +
@@ -91,26 +91,26 @@ TEST(EdgeStatistics, SphereSatisfiesEulersFormula) {
 }
 
 TEST(EdgeStatistics, MalformedMeshIsRejected) {
-  TriangleMesh cube = test::unit_cube();
+  TriangleMesh cube = test_support::unit_cube();
   cube.triangles[0][2] = -1;
   EXPECT_THROW(edge_statistics(cube), InvalidInput);
 }
 
 TEST(Measures, UnitCubeHasVolumeOneAndAreaSix) {
-  EXPECT_DOUBLE_EQ(enclosed_volume(test::unit_cube()), 1.0);
-  EXPECT_DOUBLE_EQ(surface_area(test::unit_cube()), 6.0);
-  EXPECT_DOUBLE_EQ(enclosed_volume(flipped(test::unit_cube())), -1.0);
+  EXPECT_DOUBLE_EQ(enclosed_volume(test_support::unit_cube()), 1.0);
+  EXPECT_DOUBLE_EQ(surface_area(test_support::unit_cube()), 6.0);
+  EXPECT_DOUBLE_EQ(enclosed_volume(flipped(test_support::unit_cube())), -1.0);
 }
 
 TEST(Measures, TetrahedronHasVolumeOneSixth) {
-  EXPECT_DOUBLE_EQ(enclosed_volume(test::unit_tetrahedron()), 1.0 / 6);
-  EXPECT_DOUBLE_EQ(surface_area(test::unit_tetrahedron()), 1.5 + std::sqrt(3.0) / 2);
+  EXPECT_DOUBLE_EQ(enclosed_volume(test_support::unit_tetrahedron()), 1.0 / 6);
+  EXPECT_DOUBLE_EQ(surface_area(test_support::unit_tetrahedron()), 1.5 + std::sqrt(3.0) / 2);
 }
 
 TEST(Measures, VolumeDoesNotDependOnWhereTheMeshIs) {
   // Far from the origin the triple products of the raw coordinates are ~1e21 each; a volume of
   // 1 survives only if the computation is done relative to the mesh.
-  const TriangleMesh far = translated(test::unit_cube(), {1e7, -3e7, 2e7});
+  const TriangleMesh far = translated(test_support::unit_cube(), {1e7, -3e7, 2e7});
   EXPECT_NEAR(enclosed_volume(far), 1.0, 1e-9);
   EXPECT_NEAR(surface_area(far), 6.0, 1e-8);
 }
@@ -118,13 +118,13 @@ TEST(Measures, VolumeDoesNotDependOnWhereTheMeshIs) {
 TEST(Measures, SphereApproachesTheBallFromInside) {
   double previous = 0;
   for (int levels = 0; levels <= 4; ++levels) {
-    const double volume = enclosed_volume(test::icosphere(levels));
+    const double volume = enclosed_volume(test_support::icosphere(levels));
     EXPECT_GT(volume, previous);                  // refining adds volume ...
     EXPECT_LT(volume, 4 * std::numbers::pi / 3);  // ... but an inscribed polyhedron stays inside
     previous = volume;
   }
   EXPECT_NEAR(previous, 4 * std::numbers::pi / 3, 0.01);
-  EXPECT_NEAR(surface_area(test::icosphere(4)), 4 * std::numbers::pi, 0.02);
+  EXPECT_NEAR(surface_area(test_support::icosphere(4)), 4 * std::numbers::pi, 0.02);
 }
 
 TEST(Measures, EmptyMeshHasNothing) {
@@ -133,7 +133,7 @@ TEST(Measures, EmptyMeshHasNothing) {
 }
 
 TEST(Weld, SeparateQuadsOfACubeBecomeAClosedCubeWithEightVertices) {
-  TriangleMesh cube = test::unit_cube_as_separate_quads();
+  TriangleMesh cube = test_support::unit_cube_as_separate_quads();
   ASSERT_EQ(cube.num_vertices(), 24u);
   EXPECT_EQ(edge_statistics(cube).boundary_edges, 24u);
   weld_by_position(cube, 1e-9);
@@ -142,11 +142,11 @@ TEST(Weld, SeparateQuadsOfACubeBecomeAClosedCubeWithEightVertices) {
   EXPECT_EQ(cube.parameters.size(), 8u);
   EXPECT_TRUE(edge_statistics(cube).closed_and_oriented());
   EXPECT_DOUBLE_EQ(enclosed_volume(cube), 1.0);
-  EXPECT_EQ(cube.parts, test::unit_cube().parts);
+  EXPECT_EQ(cube.parts, test_support::unit_cube().parts);
 }
 
 TEST(Weld, ExactModeMergesOnlyEqualPositions) {
-  TriangleMesh cube = test::unit_cube_as_separate_quads();
+  TriangleMesh cube = test_support::unit_cube_as_separate_quads();
   cube.positions[5].x() += 1e-12;  // one copy of a corner moved off by a hair
   weld_by_position(cube, 0);
   EXPECT_EQ(cube.num_vertices(), 9u);
@@ -154,7 +154,7 @@ TEST(Weld, ExactModeMergesOnlyEqualPositions) {
 }
 
 TEST(Weld, ToleranceBridgesSmallGapsAndKeepsTheFirstVertex) {
-  TriangleMesh cube = test::unit_cube_as_separate_quads();
+  TriangleMesh cube = test_support::unit_cube_as_separate_quads();
   for (std::size_t v = 0; v < cube.num_vertices(); ++v) {
     cube.positions[v] += Eigen::Vector3d::Constant(1e-7 * static_cast<double>(v % 3));
     cube.parameters[v] = Eigen::Vector3d::Constant(static_cast<double>(v));
@@ -177,7 +177,7 @@ TEST(Weld, ToleranceBridgesSmallGapsAndKeepsTheFirstVertex) {
 }
 
 TEST(Weld, DropsTrianglesThatCollapseAndVerticesNobodyUses) {
-  TriangleMesh mesh = test::unit_cube();
+  TriangleMesh mesh = test_support::unit_cube();
   // A sliver whose two nearby corners merge, and a vertex no triangle uses.
   const int a = mesh.add_vertex({2, 0, 0}, kNoParameter);
   const int b = mesh.add_vertex({2, 1e-8, 0}, kNoParameter);
@@ -187,22 +187,22 @@ TEST(Weld, DropsTrianglesThatCollapseAndVerticesNobodyUses) {
   weld_by_position(mesh, 1e-6);
   EXPECT_EQ(mesh.num_triangles(), 12u);
   EXPECT_EQ(mesh.num_vertices(), 8u);
-  EXPECT_EQ(mesh.positions, test::unit_cube().positions);
-  EXPECT_EQ(mesh.triangles, test::unit_cube().triangles);
+  EXPECT_EQ(mesh.positions, test_support::unit_cube().positions);
+  EXPECT_EQ(mesh.triangles, test_support::unit_cube().triangles);
 }
 
 TEST(Weld, WorksFarFromTheOriginAndWithHugeCoordinates) {
-  TriangleMesh far = translated(test::unit_cube_as_separate_quads(), {1e12, 0, -1e12});
+  TriangleMesh far = translated(test_support::unit_cube_as_separate_quads(), {1e12, 0, -1e12});
   weld_by_position(far, 0);
   EXPECT_EQ(far.num_vertices(), 8u);
-  TriangleMesh huge = test::unit_cube_as_separate_quads();
+  TriangleMesh huge = test_support::unit_cube_as_separate_quads();
   for (auto& p : huge.positions) p *= 1e300;
   weld_by_position(huge, 1e-9);
   EXPECT_EQ(huge.num_vertices(), 8u);
 }
 
 TEST(Weld, RejectsBadTolerances) {
-  TriangleMesh cube = test::unit_cube();
+  TriangleMesh cube = test_support::unit_cube();
   EXPECT_THROW(weld_by_position(cube, -1e-9), InvalidInput);
   EXPECT_THROW(weld_by_position(cube, std::numeric_limits<double>::quiet_NaN()), InvalidInput);
   EXPECT_THROW(weld_by_position(cube, std::numeric_limits<double>::infinity()), InvalidInput);

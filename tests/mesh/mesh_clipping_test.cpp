@@ -19,7 +19,7 @@ std::map<std::pair<int, int>, int> edge_uses(const TriangleMesh& m) {
 }
 
 TEST(MeshClipping, TheTwoPartsPartitionTheSurface) {
-  const TriangleMesh sphere = test::icosphere(3);
+  const TriangleMesh sphere = test_support::icosphere(3);
   const std::vector<Plane> octant{plane_through(Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d::UnitX()),
                                   plane_through(Eigen::Vector3d(0, -0.2, 0), Eigen::Vector3d::UnitY()),
                                   plane_through(Eigen::Vector3d(0, 0, 0.3), Eigen::Vector3d(0.2, 0, 1))};
@@ -41,7 +41,7 @@ TEST(MeshClipping, TheTwoPartsPartitionTheSurface) {
 }
 
 TEST(MeshClipping, CutsAClosedSurfaceWithoutCracksAlongThePlane) {
-  const TriangleMesh sphere = test::icosphere(3);
+  const TriangleMesh sphere = test_support::icosphere(3);
   const Plane plane = plane_through(Eigen::Vector3d(0, 0, 0.25), Eigen::Vector3d(0.3, 0.1, 1));
   const TriangleMesh cut = remove_convex_region(sphere, {plane});
   int borders = 0;
@@ -57,7 +57,7 @@ TEST(MeshClipping, CutsAClosedSurfaceWithoutCracksAlongThePlane) {
 }
 
 TEST(MeshClipping, FacesInACutPlaneAreKeptOnceAndBadPlanesAreRejected) {
-  const TriangleMesh cube = test::unit_cube();
+  const TriangleMesh cube = test_support::unit_cube();
   const auto [lo, hi] = cube.bounding_box();
   // The plane through the cube's top face: nothing lies on its open positive side.
   const Plane top{Eigen::Vector3d::UnitZ(), hi.z()};

@@ -32,7 +32,7 @@ std::string error_of(const std::function<void()>& f) {
 
 // The sphere with varied parts and parameters that differ from the positions.
 TriangleMesh sample_mesh() {
-  TriangleMesh mesh = test::icosphere(2);
+  TriangleMesh mesh = test_support::icosphere(2);
   for (std::size_t i = 0; i < mesh.parameters.size(); ++i) mesh.parameters[i] = Eigen::Vector3d(0.1 * i, 1.0 / (i + 3), -0.5);
   for (std::size_t t = 0; t < mesh.parts.size(); ++t) mesh.parts[t] = static_cast<int>(t % 7);
   return mesh;
@@ -91,7 +91,7 @@ TEST(MeshReader, StlRoundTripWeldsBackToTheSameVertices) {
 }
 
 TEST(MeshReader, FilesRoundTripThroughWriteMesh) {
-  test::TemporaryDirectory tmp;
+  test_support::TemporaryDirectory tmp;
   const TriangleMesh mesh = sample_mesh();
   for (const char* name : {"a.ply", "b.PLY", "c.obj", "d.stl"}) {
     write_mesh(mesh, tmp / name);
@@ -215,13 +215,13 @@ TEST(MeshReader, PlyErrorsNamePlaceAndNeverTrustCounts) {
                            "property double y\nproperty double z\nend_header\n" + std::string(48, '\0');
   EXPECT_NE(error_of([&] { parse_ply(huge, "m.ply"); }).find("m.ply: line 3: element vertex declares 100000000 items"), std::string::npos);
   // A list length that the remaining bytes cannot hold.
-  std::string binary = ply_bytes(test::unit_tetrahedron());
+  std::string binary = ply_bytes(test_support::unit_tetrahedron());
   const std::size_t face_start = binary.size() - 4 * 17;
   binary[face_start] = static_cast<char>(250);
   EXPECT_EQ(error_of([&] { parse_ply(binary, "t.ply"); }),
             "t.ply: byte " + std::to_string(face_start + 1) + " (face 0): unexpected end of file: a list of 250 values does not fit");
   // Truncated binary data names the byte offset.
-  const std::string whole = ply_bytes(test::unit_tetrahedron());
+  const std::string whole = ply_bytes(test_support::unit_tetrahedron());
   EXPECT_NE(error_of([&] { parse_ply(whole.substr(0, whole.size() - 3), "t.ply"); }).find("t.ply: byte "), std::string::npos);
 }
 
@@ -240,7 +240,7 @@ TEST(MeshReader, AsciiStlWithSeveralSolids) {
 }
 
 TEST(MeshReader, BinaryStlCountsAreCheckedAgainstTheSize) {
-  std::string bytes = stl_bytes(test::unit_cube());
+  std::string bytes = stl_bytes(test_support::unit_cube());
   EXPECT_EQ(parse_stl(bytes, "c.stl").num_vertices(), 8u);
   EXPECT_EQ(error_of([&] { parse_stl(bytes.substr(0, bytes.size() - 1), "c.stl"); }),
             "c.stl: byte 80: the header declares 12 triangles (684 bytes), the file has only 683 bytes");

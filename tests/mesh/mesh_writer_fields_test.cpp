@@ -22,7 +22,7 @@ std::vector<double> field_of(const TriangleMesh& mesh) {
 }
 
 TEST(PlyScalar, AsciiAndBinaryCarryTheValuesAfterTheParameters) {
-  const TriangleMesh cube = test::unit_cube();
+  const TriangleMesh cube = test_support::unit_cube();
   const auto f = field_of(cube);
   const std::string text = ply_bytes(cube, true, f, "jacobian");
   EXPECT_NE(text.find("property double w\nproperty double jacobian\n"), std::string::npos);
@@ -52,7 +52,7 @@ TEST(PlyScalar, AsciiAndBinaryCarryTheValuesAfterTheParameters) {
 }
 
 TEST(GlbVertexColors, CornersCarryTheGivenColoursInLinearSpace) {
-  const TriangleMesh cube = test::unit_cube();
+  const TriangleMesh cube = test_support::unit_cube();
   std::vector<Eigen::Vector3d> colors;
   for (const auto& p : cube.positions) colors.push_back(0.25 * p + Eigen::Vector3d::Constant(0.5));
   const std::string bytes = glb_bytes(cube, colors);

@@ -90,12 +90,12 @@ void expect_round_trip(const TriangleMesh& mesh, bool planar_parts) {
 TEST(Glb, CubeRoundTripsThroughTinygltfWithFaceNormalsAndPartColours) {
   // The cube shares its 8 vertices between parts: the writer must split them so that every
   // face keeps its own colour and flat normal.
-  expect_round_trip(test::unit_cube(), true);
-  expect_round_trip(test::unit_cube_as_separate_quads(), true);
+  expect_round_trip(test_support::unit_cube(), true);
+  expect_round_trip(test_support::unit_cube_as_separate_quads(), true);
 }
 
 TEST(Glb, CurvedMeshNormalsPointOutwardAndColoursFollowParts) {
-  const TriangleMesh sphere = test::icosphere(2);
+  const TriangleMesh sphere = test_support::icosphere(2);
   expect_round_trip(sphere, false);
   const LoadedGlb glb = load(glb_bytes(sphere));
   // Smooth normals of a sphere centred at the origin point along the position vector.
@@ -108,15 +108,15 @@ TEST(Glb, CurvedMeshNormalsPointOutwardAndColoursFollowParts) {
 
 TEST(Glb, IsChosenByExtensionAndWrittenAtomically) {
   EXPECT_EQ(mesh_format_from_path("solid.GLB"), MeshFormat::Glb);
-  const test::TemporaryDirectory dir;
-  write_mesh(test::unit_tetrahedron(), dir / "t.glb");
+  const test_support::TemporaryDirectory dir;
+  write_mesh(test_support::unit_tetrahedron(), dir / "t.glb");
   EXPECT_EQ(dir.entries(), 1u);
-  const LoadedGlb glb = load(glb_bytes(test::unit_tetrahedron()));
+  const LoadedGlb glb = load(glb_bytes(test_support::unit_tetrahedron()));
   EXPECT_EQ(glb.indices.size(), 12u);
 }
 
 TEST(Glb, MalformedMeshIsRejected) {
-  TriangleMesh mesh = test::unit_tetrahedron();
+  TriangleMesh mesh = test_support::unit_tetrahedron();
   mesh.triangles[0][1] = 17;
   EXPECT_THROW(glb_bytes(mesh), InvalidInput);
 }

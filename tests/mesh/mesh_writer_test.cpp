@@ -23,7 +23,7 @@
 namespace volspline {
 namespace {
 
-using test::TemporaryDirectory;
+using test_support::TemporaryDirectory;
 
 // A reader for exactly the PLY layout volspline writes, independent of the writer's code, so a
 // round trip checks the bytes against the format rather than against themselves.
@@ -120,7 +120,7 @@ TriangleMesh parse_ply(const std::string& bytes) {
 // Numbers that break careless formatting: too many digits for %g, subnormal, huge, negative
 // zero, and values that are not short decimals.
 TriangleMesh awkward_mesh() {
-  TriangleMesh mesh = test::unit_tetrahedron();
+  TriangleMesh mesh = test_support::unit_tetrahedron();
   std::mt19937_64 random(20240611);
   std::uniform_real_distribution<double> uniform(-1, 1);
   const double specials[] = {0.1,
@@ -233,7 +233,7 @@ TEST(Ply, EmptyMeshIsAValidFile) {
 }
 
 TEST(Obj, HasOneBasedFacesGroupedByPartAndExactPositions) {
-  TriangleMesh mesh = test::unit_cube();
+  TriangleMesh mesh = test_support::unit_cube();
   mesh.positions[7] = {1.0 / 3, 0.1, 1e-300};
   // Interleave parts so grouping has something to do.
   std::reverse(mesh.parts.begin(), mesh.parts.end());
@@ -281,7 +281,7 @@ TEST(Obj, HasOneBasedFacesGroupedByPartAndExactPositions) {
 }
 
 TEST(Stl, BinaryHas84PlusFiftyBytesPerTriangleAndOutwardNormals) {
-  const TriangleMesh cube = test::unit_cube();
+  const TriangleMesh cube = test_support::unit_cube();
   const std::string bytes = stl_bytes(cube);
   ASSERT_EQ(bytes.size(), 84 + 50 * cube.num_triangles());
   EXPECT_NE(bytes.rfind("solid", 0), 0u) << "binary STL must not look like ASCII STL";
@@ -305,7 +305,7 @@ TEST(Stl, BinaryHas84PlusFiftyBytesPerTriangleAndOutwardNormals) {
 }
 
 TEST(Stl, AsciiListsOneFacetPerTriangle) {
-  const TriangleMesh sphere = test::icosphere(1);
+  const TriangleMesh sphere = test_support::icosphere(1);
   const std::string text = stl_bytes(sphere, true);
   EXPECT_EQ(text.rfind("solid volspline\n", 0), 0u);
   EXPECT_TRUE(text.ends_with("endsolid volspline\n"));
@@ -329,7 +329,7 @@ TEST(Stl, DegenerateTriangleGetsAZeroNormal) {
 
 TEST(WriteMesh, DispatchesOnTheExtensionAndWritesTheSameBytes) {
   const TemporaryDirectory dir;
-  const TriangleMesh cube = test::unit_cube();
+  const TriangleMesh cube = test_support::unit_cube();
   write_mesh(cube, dir / "cube.PLY");
   EXPECT_EQ(read_file(dir / "cube.PLY"), ply_bytes(cube));
   write_mesh(cube, dir / "cube.ply", {.ascii = true});
@@ -354,26 +354,26 @@ TEST(WriteMesh, ReplacesAnExistingFile) {
 TEST(WriteMesh, MissingDirectoryThrowsIoErrorAndLeavesNothing) {
   const TemporaryDirectory dir;
   for (const char* name : {"missing/cube.ply", "missing/cube.obj", "missing/cube.stl"}) {
-    EXPECT_THROW(write_mesh(test::unit_cube(), dir / name), IoError) << name;
+    EXPECT_THROW(write_mesh(test_support::unit_cube(), dir / name), IoError) << name;
   }
   EXPECT_EQ(dir.entries(), 0u);
 }
 
 TEST(WriteMesh, UnknownExtensionThrowsInvalidInputBeforeCreatingAFile) {
   const TemporaryDirectory dir;
-  EXPECT_THROW(write_mesh(test::unit_cube(), dir / "cube.off"), InvalidInput);
+  EXPECT_THROW(write_mesh(test_support::unit_cube(), dir / "cube.off"), InvalidInput);
   EXPECT_EQ(dir.entries(), 0u);
 }
 
 TEST(WriteMesh, MalformedMeshIsRejectedWithoutWriting) {
   const TemporaryDirectory dir;
-  TriangleMesh bad_index = test::unit_cube();
+  TriangleMesh bad_index = test_support::unit_cube();
   bad_index.triangles[3][1] = 8;
-  TriangleMesh missing_parts = test::unit_cube();
+  TriangleMesh missing_parts = test_support::unit_cube();
   missing_parts.parts.pop_back();
-  TriangleMesh missing_parameters = test::unit_cube();
+  TriangleMesh missing_parameters = test_support::unit_cube();
   missing_parameters.parameters.pop_back();
-  TriangleMesh not_finite = test::unit_cube();
+  TriangleMesh not_finite = test_support::unit_cube();
   not_finite.positions[2].y() = std::numeric_limits<double>::quiet_NaN();
   for (const TriangleMesh* mesh : {&bad_index, &missing_parts, &missing_parameters, &not_finite}) {
     for (const char* name : {"bad.ply", "bad.obj", "bad.stl"}) {

@@ -24,7 +24,7 @@ namespace {
 // Eigen leaves `{}` uninitialised, so parameters that do not matter are spelled out.
 const Eigen::Vector3d kNoParameter = Eigen::Vector3d::Zero();
 
-using test::TemporaryDirectory;
+using test_support::TemporaryDirectory;
 
 // Small pictures keep the suite fast; the properties tested do not depend on the size.
 RenderOptions small(int width = 160, int height = 120) {
@@ -63,7 +63,7 @@ void expect_corners_transparent(const Image& image) {
 }
 
 TEST(RenderMesh, CubeIsAShadedObjectFillingPartOfTheFrame) {
-  const Image image = render_mesh(test::unit_cube(), transparent(small()));
+  const Image image = render_mesh(test_support::unit_cube(), transparent(small()));
   ASSERT_EQ(image.width, 160);
   ASSERT_EQ(image.height, 120);
   ASSERT_EQ(image.rgba.size(), 4u * 160 * 120);
@@ -76,7 +76,7 @@ TEST(RenderMesh, CubeIsAShadedObjectFillingPartOfTheFrame) {
 }
 
 TEST(RenderMesh, OpaqueBackgroundIsLightAndDiffersFromTheObject) {
-  const Image image = render_mesh(test::unit_cube(), small());
+  const Image image = render_mesh(test_support::unit_cube(), small());
   for (std::size_t i = 3; i < image.rgba.size(); i += 4) ASSERT_EQ(image.rgba[i], 255);
   const std::uint8_t* corner = image.pixel(0, 0);
   EXPECT_GT(std::min({corner[0], corner[1], corner[2]}), 200);
@@ -89,7 +89,7 @@ TEST(RenderMesh, VisibleFacesShowTheirPartColours) {
   // The default view looks at the x = 1, y = 1 and z = 1 faces: parts 1 (light blue),
   // 3 (light green) and 5 (lavender). Shading scales the channels alike and highlights add
   // grey, so the order of the channels identifies the hue.
-  const Image image = render_mesh(test::unit_cube(), transparent(small()));
+  const Image image = render_mesh(test_support::unit_cube(), transparent(small()));
   std::size_t blue = 0, green = 0, lavender = 0, covered = 0;
   for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
     if (image.rgba[i + 3] != 255) continue;
@@ -104,19 +104,19 @@ TEST(RenderMesh, VisibleFacesShowTheirPartColours) {
 }
 
 TEST(RenderMesh, ColourModesUseOrIgnoreParts) {
-  TriangleMesh one_part = test::unit_cube();
+  TriangleMesh one_part = test_support::unit_cube();
   std::fill(one_part.parts.begin(), one_part.parts.end(), 0);
-  EXPECT_NE(render_mesh(test::unit_cube(), small()).rgba, render_mesh(one_part, small()).rgba);
+  EXPECT_NE(render_mesh(test_support::unit_cube(), small()).rgba, render_mesh(one_part, small()).rgba);
   RenderOptions single = small();
   single.color = ColorMode::Single;
-  EXPECT_EQ(render_mesh(test::unit_cube(), single).rgba, render_mesh(one_part, single).rgba);
+  EXPECT_EQ(render_mesh(test_support::unit_cube(), single).rgba, render_mesh(one_part, single).rgba);
 }
 
 TEST(RenderMesh, EdgesDrawDarkLines) {
   RenderOptions with_edges = small();
   with_edges.edges = true;
-  const Image plain = render_mesh(test::unit_cube(), small());
-  const Image lined = render_mesh(test::unit_cube(), with_edges);
+  const Image plain = render_mesh(test_support::unit_cube(), small());
+  const Image lined = render_mesh(test_support::unit_cube(), with_edges);
   std::size_t darker = 0, lighter = 0;
   for (std::size_t i = 0; i < plain.rgba.size(); i += 4) {
     const int before = plain.rgba[i] + plain.rgba[i + 1] + plain.rgba[i + 2];
@@ -130,7 +130,7 @@ TEST(RenderMesh, EdgesDrawDarkLines) {
 }
 
 TEST(RenderMesh, IsDeterministicDespiteRunningInParallel) {
-  const TriangleMesh sphere = test::icosphere(3);
+  const TriangleMesh sphere = test_support::icosphere(3);
   RenderOptions options = small(200, 150);
   options.edges = true;
   EXPECT_EQ(render_mesh(sphere, options).rgba, render_mesh(sphere, options).rgba);
@@ -138,7 +138,7 @@ TEST(RenderMesh, IsDeterministicDespiteRunningInParallel) {
 
 TEST(RenderMesh, SphereLooksRoundAndCentred) {
   RenderOptions options = transparent(small(150, 150));
-  const Image image = render_mesh(test::icosphere(3), options);
+  const Image image = render_mesh(test_support::icosphere(3), options);
   // A disc spanning about 90% of the frame covers about pi/4 * 0.9^2 of it.
   EXPECT_NEAR(coverage(image), std::numbers::pi / 4 * 0.81, 0.05);
   EXPECT_EQ(image.pixel(75, 75)[3], 255);
@@ -147,11 +147,11 @@ TEST(RenderMesh, SphereLooksRoundAndCentred) {
 
 TEST(RenderMesh, FramingDoesNotDependOnWhereTheMeshIs) {
   // Far from the origin, single-precision coordinates would be too coarse without re-centring.
-  TriangleMesh far = test::icosphere(2);
+  TriangleMesh far = test_support::icosphere(2);
   for (auto& p : far.positions) p += Eigen::Vector3d(3e7, -1e7, 5e6);
   const RenderOptions options = transparent(small());
   EXPECT_NEAR(coverage(render_mesh(far, options)),
-              coverage(render_mesh(test::icosphere(2), options)), 0.01);
+              coverage(render_mesh(test_support::icosphere(2), options)), 0.01);
 }
 
 TEST(RenderMesh, OddViewsAndShapesStillFrameTheMesh) {
@@ -161,16 +161,16 @@ TEST(RenderMesh, OddViewsAndShapesStillFrameTheMesh) {
   tall.supersample = false;
   tall.smooth_normals = false;
   for (const RenderOptions& options : {top_down, tall}) {
-    const double share = coverage(render_mesh(test::unit_cube(), options));
+    const double share = coverage(render_mesh(test_support::unit_cube(), options));
     EXPECT_GT(share, 0.10);
     EXPECT_LT(share, 0.90);
   }
 }
 
 TEST(RenderMesh, OpenAndInsideOutMeshesAreShadedOnBothSides) {
-  TriangleMesh inside_out = test::unit_cube();
+  TriangleMesh inside_out = test_support::unit_cube();
   for (auto& t : inside_out.triangles) std::swap(t[1], t[2]);
-  const Image a = render_mesh(inside_out, small()), b = render_mesh(test::unit_cube(), small());
+  const Image a = render_mesh(inside_out, small()), b = render_mesh(test_support::unit_cube(), small());
   // Reversed corners change the order of floating-point sums, so allow rounding differences.
   std::size_t different = 0;
   for (std::size_t i = 0; i < a.rgba.size(); ++i) {
@@ -197,7 +197,7 @@ TEST(RenderMesh, NothingToSeeGivesTheBackground) {
 }
 
 TEST(RenderMesh, RejectsBadOptionsAndMalformedMeshes) {
-  const TriangleMesh cube = test::unit_cube();
+  const TriangleMesh cube = test_support::unit_cube();
   RenderOptions options = small();
   options.width = 0;
   EXPECT_THROW(render_mesh(cube, options), InvalidInput);
@@ -216,7 +216,7 @@ TEST(RenderMesh, RejectsBadOptionsAndMalformedMeshes) {
 }
 
 TEST(Png, StartsWithTheSignatureAndDescribesAnRgbaImage) {
-  const Image image = render_mesh(test::unit_cube(), small(64, 48));
+  const Image image = render_mesh(test_support::unit_cube(), small(64, 48));
   const std::string png = png_bytes(image);
   ASSERT_GT(png.size(), 33u);
   EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
@@ -235,7 +235,7 @@ TEST(Png, StartsWithTheSignatureAndDescribesAnRgbaImage) {
 
 TEST(Png, WritesTheEncodedBytesAtomically) {
   const TemporaryDirectory dir;
-  const Image image = render_mesh(test::unit_cube(), small(64, 48));
+  const Image image = render_mesh(test_support::unit_cube(), small(64, 48));
   write_png(image, dir / "cube.png");
   EXPECT_EQ(read_file(dir / "cube.png"), png_bytes(image));
   EXPECT_EQ(dir.entries(), 1u);
@@ -243,7 +243,7 @@ TEST(Png, WritesTheEncodedBytesAtomically) {
 
 TEST(Png, MissingDirectoryThrowsIoErrorAndLeavesNoFile) {
   const TemporaryDirectory dir;
-  const Image image = render_mesh(test::unit_cube(), small(64, 48));
+  const Image image = render_mesh(test_support::unit_cube(), small(64, 48));
   EXPECT_THROW(write_png(image, dir / "missing" / "cube.png"), IoError);
   EXPECT_FALSE(std::filesystem::exists(dir / "missing"));
   EXPECT_EQ(dir.entries(), 0u);

@@ -110,7 +110,7 @@ TEST(BorderOutlines, DrawDarkLinesAtBordersOfOpenSurfacesOnly) {
   EXPECT_GT(darker_near_border, 4 * 100);  // four sides, each about 170 pixels long
   EXPECT_EQ(changed_inside, 0);
   // A closed mesh has no borders: the pictures are identical.
-  const TriangleMesh cube = test::unit_cube();
+  const TriangleMesh cube = test_support::unit_cube();
   RenderOptions c1, c2;
   c1.width = c2.width = 120;
   c1.height = c2.height = 90;

@@ -8,7 +8,7 @@
 #include <string>
 #include <sys/wait.h>
 
-namespace volspline::test {
+namespace volspline::test_support {
 
 struct CliResult {
   int code;
@@ -28,4 +28,4 @@ inline CliResult run_cli(const std::string& args, const std::filesystem::path& d
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
 
-}  // namespace volspline::test
+}  // namespace volspline::test_support

@@ -12,7 +12,7 @@
 #include "support/test_splines.h"
 #include "volspline/io/model_file.h"
 
-namespace volspline::test {
+namespace volspline::test_support {
 
 /// Six objects: a curve, surface and volume, each polynomial and rational, with interior knots of
 /// several multiplicities; the rational surface has unclamped knots. Every object carries an
@@ -88,4 +88,4 @@ inline double max_model_difference(const Model& a, const Model& b, std::mt19937&
   return worst;
 }
 
-}  // namespace volspline::test
+}  // namespace volspline::test_support

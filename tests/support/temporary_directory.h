@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-namespace volspline::test {
+namespace volspline::test_support {
 
 class TemporaryDirectory {
  public:
@@ -40,4 +40,4 @@ class TemporaryDirectory {
   std::filesystem::path path_;
 };
 
-}  // namespace volspline::test
+}  // namespace volspline::test_support

@@ -9,7 +9,7 @@
 
 #include "volspline/mesh/triangle_mesh.h"
 
-namespace volspline::test {
+namespace volspline::test_support {
 
 /// The corners of the quad faces of the unit cube [0, 1]^3 (vertex x + 2y + 4z), one per part
 /// 0..5 in the order u=min, u=max, v=min, v=max, w=min, w=max, counter-clockwise from outside.
@@ -107,4 +107,4 @@ inline TriangleMesh icosphere(int levels) {
   return mesh;
 }
 
-}  // namespace volspline::test
+}  // namespace volspline::test_support
