@@ -350,11 +350,37 @@ class PlyData {
   const std::string& source_;
 };
 
-TriangleMesh parse_ply_bytes(std::string_view bytes, const std::string& source) {
-  // Header: text lines up to "end_header".
+// The header: the format and the declared elements, and where the data starts.
+struct PlyHeader {
+  PlyFormat format = PlyFormat::Ascii;
+  std::vector<PlyElement> elements;
+  std::size_t data_start = 0;  // byte after "end_header\n"
+  std::size_t last_line = 0;   // the line number of "end_header"
+};
+
+// One "property ..." line of the header.
+PlyProperty read_property_line(const std::vector<std::string_view>& words, const std::string& source, const std::string& where) {
+  if (words.size() == 5 && words[1] == "list") {
+    const auto count_type = scalar_type(words[2]);
+    const auto type = scalar_type(words[3]);
+    if (!count_type || !type || !is_integer_type(*count_type)) {
+      fail(source, where, "expected 'property list COUNT_TYPE TYPE NAME' with an integer count type");
+    }
+    return {std::string(words[4]), true, *count_type, *type};
+  }
+  if (words.size() == 3) {
+    const auto type = scalar_type(words[1]);
+    if (!type) fail(source, where, "unknown property type " + quoted(words[1]));
+    return {std::string(words[2]), false, ScalarType::UInt8, *type};
+  }
+  fail(source, where, "expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
+}
+
+// Header: text lines up to "end_header".
+PlyHeader read_ply_header(std::string_view bytes, const std::string& source) {
+  PlyHeader header;
   std::size_t position = 0, line_number = 0;
   std::optional<PlyFormat> format;
-  std::vector<PlyElement> elements;
   bool ended = false;
   while (!ended) {
     if (position >= bytes.size()) fail(source, line_at(line_number + 1), "unexpected end of file in the header (no end_header)");
@@ -383,25 +409,10 @@ TriangleMesh parse_ply_bytes(std::string_view bytes, const std::string& source) 
       if (words.size() != 3 || !parse_integer(words[2], count) || count < 0) {
         fail(source, where, "expected 'element NAME COUNT' with a count >= 0");
       }
-      elements.push_back({std::string(words[1]), static_cast<std::size_t>(count), {}, line_number});
+      header.elements.push_back({std::string(words[1]), static_cast<std::size_t>(count), {}, line_number});
     } else if (keyword == "property") {
-      if (elements.empty()) fail(source, where, "a property before any element");
-      PlyProperty property;
-      if (words.size() == 5 && words[1] == "list") {
-        const auto count_type = scalar_type(words[2]);
-        const auto type = scalar_type(words[3]);
-        if (!count_type || !type || !is_integer_type(*count_type)) {
-          fail(source, where, "expected 'property list COUNT_TYPE TYPE NAME' with an integer count type");
-        }
-        property = {std::string(words[4]), true, *count_type, *type};
-      } else if (words.size() == 3) {
-        const auto type = scalar_type(words[1]);
-        if (!type) fail(source, where, "unknown property type " + quoted(words[1]));
-        property = {std::string(words[2]), false, ScalarType::UInt8, *type};
-      } else {
-        fail(source, where, "expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
-      }
-      elements.back().properties.push_back(std::move(property));
+      if (header.elements.empty()) fail(source, where, "a property before any element");
+      header.elements.back().properties.push_back(read_property_line(words, source, where));
     } else if (keyword == "end_header") {
       ended = true;
     } else {
@@ -409,128 +420,196 @@ TriangleMesh parse_ply_bytes(std::string_view bytes, const std::string& source) 
     }
   }
   if (!format) fail(source, "header", "no 'format' line");
+  header.format = *format;
+  header.data_start = position;
+  header.last_line = line_number;
+  return header;
+}
 
+// The element named "vertex" (the last of that name).
+const PlyElement& vertex_element_of(const PlyHeader& header, const std::string& source) {
   const PlyElement* vertex_element = nullptr;
-  for (const auto& e : elements) if (e.name == "vertex") vertex_element = &e;
+  for (const auto& e : header.elements) if (e.name == "vertex") vertex_element = &e;
   if (vertex_element == nullptr) fail(source, "header", "no 'element vertex'");
-  const int vertex_count = checked_vertex_count(vertex_element->count, source, line_at(vertex_element->header_line));
+  return *vertex_element;
+}
+
+void check_vertex_coordinates(const PlyElement& vertex_element, const std::string& source) {
   for (const char* name : {"x", "y", "z"}) {
-    const int i = vertex_element->find(name);
-    if (i < 0 || vertex_element->properties[static_cast<std::size_t>(i)].list) {
-      fail(source, line_at(vertex_element->header_line), std::string("element vertex has no scalar property ") + name);
+    const int i = vertex_element.find(name);
+    if (i < 0 || vertex_element.properties[static_cast<std::size_t>(i)].list) {
+      fail(source, line_at(vertex_element.header_line), std::string("element vertex has no scalar property ") + name);
+    }
+  }
+}
+
+// Reads the elements' data into a mesh: vertices (x y z and, where present, u v w), faces
+// (vertex_indices fanned into triangles, an optional integer part); other elements are read
+// and dropped. Face indices are checked against the vertex count at the end, since the vertex
+// element may come after the faces.
+class PlyMeshReader {
+ public:
+  PlyMeshReader(std::string_view bytes, const PlyHeader& header, const PlyElement& vertex_element, const std::string& source)
+      : data_(bytes, header.data_start, header.last_line + 1, header.format, source), vertex_element_(vertex_element), source_(source) {}
+
+  TriangleMesh read(const std::vector<PlyElement>& elements, int vertex_count) {
+    for (const auto& element : elements) {
+      if (element.properties.empty()) continue;  // items without properties occupy no bytes
+      check_count_fits(element);
+      read_element(element);
+    }
+    check_face_indices(vertex_count);
+    return std::move(mesh_);
+  }
+
+ private:
+  // Which properties of an element the mesh takes.
+  struct Roles {
+    bool vertex = false, face = false;
+    int indices = -1, part = -1;
+    std::array<int, 6> coordinate{-1, -1, -1, -1, -1, -1};  // x y z u v w
+  };
+
+  // A declared count is only believed as far as the remaining bytes can back it: every item
+  // takes at least this many bytes (binary) or tokens (ascii).
+  void check_count_fits(const PlyElement& element) {
+    std::size_t minimum = 0;
+    for (const auto& p : element.properties) minimum += data_.ascii() ? 1 : scalar_size(p.list ? p.count_type : p.type);
+    if (element.count > data_.remaining() / minimum) {
+      fail(source_, line_at(element.header_line), "element " + element.name + " declares " + std::to_string(element.count) +
+                                                      " items, more than the remaining " + std::to_string(data_.remaining()) +
+                                                      " bytes can hold");
     }
   }
 
-  PlyData data(bytes, position, line_number + 1, *format, source);
-  TriangleMesh mesh;
-  // Where each triangle's face item began, to name it if an index turns out to be out of range
-  // (the vertex element may come after the faces).
+  Roles roles_of(const PlyElement& element) {
+    Roles roles;
+    roles.vertex = &element == &vertex_element_;
+    roles.face = element.name == "face";
+    if (roles.vertex) {
+      const char* names[6] = {"x", "y", "z", "u", "v", "w"};
+      for (int i = 0; i < 6; ++i) {
+        const int p = element.find(names[i]);
+        if (p >= 0 && !element.properties[static_cast<std::size_t>(p)].list) roles.coordinate[static_cast<std::size_t>(i)] = p;
+      }
+      mesh_.positions.reserve(element.count);
+      mesh_.parameters.reserve(element.count);
+    }
+    if (roles.face) {
+      roles.indices = element.find("vertex_indices");
+      if (roles.indices < 0) roles.indices = element.find("vertex_index");
+      if (roles.indices < 0 || !element.properties[static_cast<std::size_t>(roles.indices)].list) {
+        fail(source_, line_at(element.header_line), "element face has no list property vertex_indices");
+      }
+      roles.part = element.find("part");
+      if (roles.part >= 0) {
+        const auto& p = element.properties[static_cast<std::size_t>(roles.part)];
+        if (p.list || !is_integer_type(p.type)) fail(source_, line_at(element.header_line), "property part must be a scalar integer");
+      }
+    }
+    return roles;
+  }
+
+  void read_element(const PlyElement& element) {
+    const Roles roles = roles_of(element);
+    std::vector<double> values(element.properties.size());
+    for (std::size_t item = 0; item < element.count; ++item) {
+      const std::string name = element.name + " " + std::to_string(item);
+      const std::string start = data_.here();
+      for (std::size_t p = 0; p < element.properties.size(); ++p) {
+        const auto& property = element.properties[p];
+        if (property.list) {
+          read_list(property, roles.face && static_cast<int>(p) == roles.indices, name, start);
+        } else {
+          values[p] = data_.scalar(property.type, name);
+        }
+      }
+      if (roles.vertex) add_vertex(roles, values);
+      if (roles.face) add_face(roles, values, item, name, start);
+    }
+  }
+
+  // A list property; the face's vertex indices are kept in face_, any other list is dropped.
+  void read_list(const PlyProperty& property, bool indices, const std::string& name, const std::string& start) {
+    const double n = data_.scalar(property.count_type, name);
+    if (n < 0) fail(source_, start + " (" + name + ")", "a negative list length");
+    const auto length = static_cast<std::size_t>(n);
+    data_.require(length, scalar_size(property.type), name);
+    if (indices) {
+      if (length < 3) fail(source_, start + " (" + name + ")", "a face needs at least 3 vertices, got " + std::to_string(length));
+      face_.clear();
+    }
+    for (std::size_t i = 0; i < length; ++i) {
+      const double value = data_.scalar(property.type, name);
+      if (!indices) continue;
+      if (!is_integer_type(property.type) && value != std::floor(value)) {
+        fail(source_, start + " (" + name + ")", "vertex index " + format_double(value) + " is not an integer");
+      }
+      if (value < 0 || value >= static_cast<double>(INT_MAX)) {
+        fail(source_, start + " (" + name + ")", "vertex index " + format_double(value) + " out of range");
+      }
+      face_.push_back(static_cast<int>(value));
+    }
+  }
+
+  void add_vertex(const Roles& roles, const std::vector<double>& values) {
+    Eigen::Vector3d position, parameter = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 3; ++i) position[i] = values[static_cast<std::size_t>(roles.coordinate[static_cast<std::size_t>(i)])];
+    for (int i = 0; i < 3; ++i) {
+      const int p = roles.coordinate[static_cast<std::size_t>(i + 3)];
+      if (p >= 0) parameter[i] = values[static_cast<std::size_t>(p)];
+    }
+    mesh_.add_vertex(position, parameter);
+  }
+
+  void add_face(const Roles& roles, const std::vector<double>& values, std::size_t item, const std::string& name,
+                const std::string& start) {
+    int part = kUnnamedPartNumber;
+    if (roles.part >= 0) {
+      const double value = values[static_cast<std::size_t>(roles.part)];
+      if (value < INT_MIN || value > INT_MAX) fail(source_, start + " (" + name + ")", "part out of range");
+      part = static_cast<int>(value);
+    }
+    face_origins_.push_back({start, item});
+    for (std::size_t i = 1; i + 1 < face_.size(); ++i) {
+      mesh_.add_triangle(face_[0], face_[i], face_[i + 1], part);
+      triangle_face_.push_back(face_origins_.size() - 1);
+    }
+  }
+
+  void check_face_indices(int vertex_count) const {
+    for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
+      for (const int index : mesh_.triangles[t]) {
+        if (index >= vertex_count) {
+          const auto& origin = face_origins_[triangle_face_[t]];
+          fail(source_, origin.where + " (face " + std::to_string(origin.face) + ")",
+               "vertex index " + std::to_string(index) + " out of range (the file has " + std::to_string(vertex_count) + " vertices)");
+        }
+      }
+    }
+  }
+
+  // Where each triangle's face item began, to name it if an index turns out to be out of range.
   struct FaceOrigin {
     std::string where;
     std::size_t face;
   };
-  std::vector<FaceOrigin> face_origins;
-  std::vector<std::size_t> triangle_face;  // index into face_origins per triangle
-  for (const auto& element : elements) {
-    if (element.properties.empty()) continue;  // items without properties occupy no bytes
-    // A declared count is only believed as far as the remaining bytes can back it: every item
-    // takes at least this many bytes (binary) or tokens (ascii).
-    std::size_t minimum = 0;
-    for (const auto& p : element.properties) minimum += data.ascii() ? 1 : scalar_size(p.list ? p.count_type : p.type);
-    if (element.count > data.remaining() / minimum) {
-      fail(source, line_at(element.header_line), "element " + element.name + " declares " + std::to_string(element.count) +
-                                                     " items, more than the remaining " + std::to_string(data.remaining()) +
-                                                     " bytes can hold");
-    }
-    const bool is_vertex = &element == vertex_element;
-    const bool is_face = element.name == "face";
-    int indices_property = -1, part_property = -1;
-    std::array<int, 6> coordinate{-1, -1, -1, -1, -1, -1};
-    if (is_vertex) {
-      const char* names[6] = {"x", "y", "z", "u", "v", "w"};
-      for (int i = 0; i < 6; ++i) {
-        const int p = element.find(names[i]);
-        if (p >= 0 && !element.properties[static_cast<std::size_t>(p)].list) coordinate[static_cast<std::size_t>(i)] = p;
-      }
-      mesh.positions.reserve(element.count);
-      mesh.parameters.reserve(element.count);
-    }
-    if (is_face) {
-      indices_property = element.find("vertex_indices");
-      if (indices_property < 0) indices_property = element.find("vertex_index");
-      if (indices_property < 0 || !element.properties[static_cast<std::size_t>(indices_property)].list) {
-        fail(source, line_at(element.header_line), "element face has no list property vertex_indices");
-      }
-      part_property = element.find("part");
-      if (part_property >= 0) {
-        const auto& p = element.properties[static_cast<std::size_t>(part_property)];
-        if (p.list || !is_integer_type(p.type)) fail(source, line_at(element.header_line), "property part must be a scalar integer");
-      }
-    }
-    std::vector<double> values(element.properties.size());
-    std::vector<int> face;
-    for (std::size_t item = 0; item < element.count; ++item) {
-      const std::string name = element.name + " " + std::to_string(item);
-      const std::string start = data.here();
-      for (std::size_t p = 0; p < element.properties.size(); ++p) {
-        const auto& property = element.properties[p];
-        if (!property.list) {
-          values[p] = data.scalar(property.type, name);
-          continue;
-        }
-        const double n = data.scalar(property.count_type, name);
-        if (n < 0) fail(source, start + " (" + name + ")", "a negative list length");
-        const auto length = static_cast<std::size_t>(n);
-        data.require(length, scalar_size(property.type), name);
-        const bool indices = is_face && static_cast<int>(p) == indices_property;
-        if (indices) {
-          if (length < 3) fail(source, start + " (" + name + ")", "a face needs at least 3 vertices, got " + std::to_string(length));
-          face.clear();
-        }
-        for (std::size_t i = 0; i < length; ++i) {
-          const double value = data.scalar(property.type, name);
-          if (!indices) continue;
-          if (!is_integer_type(property.type) && value != std::floor(value)) {
-            fail(source, start + " (" + name + ")", "vertex index " + format_double(value) + " is not an integer");
-          }
-          if (value < 0 || value >= static_cast<double>(INT_MAX)) {
-            fail(source, start + " (" + name + ")", "vertex index " + format_double(value) + " out of range");
-          }
-          face.push_back(static_cast<int>(value));
-        }
-      }
-      if (is_vertex) {
-        Eigen::Vector3d position, parameter = Eigen::Vector3d::Zero();
-        for (int i = 0; i < 3; ++i) position[i] = values[static_cast<std::size_t>(coordinate[static_cast<std::size_t>(i)])];
-        for (int i = 0; i < 3; ++i) {
-          if (coordinate[static_cast<std::size_t>(i + 3)] >= 0) parameter[i] = values[static_cast<std::size_t>(coordinate[static_cast<std::size_t>(i + 3)])];
-        }
-        mesh.add_vertex(position, parameter);
-      } else if (is_face) {
-        int part = kUnnamedPartNumber;
-        if (part_property >= 0) {
-          const double value = values[static_cast<std::size_t>(part_property)];
-          if (value < INT_MIN || value > INT_MAX) fail(source, start + " (" + name + ")", "part out of range");
-          part = static_cast<int>(value);
-        }
-        face_origins.push_back({start, item});
-        for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-          mesh.add_triangle(face[0], face[i], face[i + 1], part);
-          triangle_face.push_back(face_origins.size() - 1);
-        }
-      }
-    }
-  }
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (const int index : mesh.triangles[t]) {
-      if (index >= vertex_count) {
-        const auto& origin = face_origins[triangle_face[t]];
-        fail(source, origin.where + " (face " + std::to_string(origin.face) + ")",
-             "vertex index " + std::to_string(index) + " out of range (the file has " + std::to_string(vertex_count) + " vertices)");
-      }
-    }
-  }
-  return mesh;
+
+  PlyData data_;
+  const PlyElement& vertex_element_;
+  const std::string& source_;
+  TriangleMesh mesh_;
+  std::vector<int> face_;
+  std::vector<FaceOrigin> face_origins_;
+  std::vector<std::size_t> triangle_face_;  // index into face_origins_ per triangle
+};
+
+TriangleMesh parse_ply_bytes(std::string_view bytes, const std::string& source) {
+  const PlyHeader header = read_ply_header(bytes, source);
+  const PlyElement& vertex_element = vertex_element_of(header, source);
+  const int vertex_count = checked_vertex_count(vertex_element.count, source, line_at(vertex_element.header_line));
+  check_vertex_coordinates(vertex_element, source);
+  return PlyMeshReader(bytes, header, vertex_element, source).read(header.elements, vertex_count);
 }
 
 // ---------------------------------------------------------------------------------------------

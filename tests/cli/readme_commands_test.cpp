@@ -41,8 +41,9 @@ std::vector<std::string> readme_command_lines(const std::string& markdown) {
 // and its trailing comment (" # ...") dropped.
 std::string runnable(std::string line, const std::filesystem::path& scratch) {
   line = std::regex_replace(line, std::regex("[ \t]+#.*$"), "");
-  line = std::regex_replace(line, std::regex("(^|[ ;&|])build/bin/volspline "), "$1" + std::string(VOLSPLINE_CLI) + " ");
+  // /tmp/ first: the binary's own path may lie below /tmp (a clone there) and must stay as it is.
   line = std::regex_replace(line, std::regex("(^|[ =])/tmp/"), "$1" + scratch.string() + "/");
+  line = std::regex_replace(line, std::regex("(^|[ ;&|])build/bin/volspline "), "$1" + std::string(VOLSPLINE_CLI) + " ");
   return line;
 }
 
