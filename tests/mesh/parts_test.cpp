@@ -23,6 +23,9 @@ TEST(Parts, KeepTheNumbersOfEveryMeshFileWritten) {
   EXPECT_EQ(part_number(Part::Slice), 10);
   EXPECT_EQ(part_number(Part::BlendSpline), 11);
   EXPECT_EQ(part_number(Part::BlendPrimitive), 12);
+  EXPECT_EQ(part_number(Part::SweepCap), 13);
+  EXPECT_EQ(part_number(Part::SweepFace), 14);
+  EXPECT_EQ(part_number(Part::SweepRankDeficient), 15);
 }
 
 TEST(Parts, HaveOneRowEachWithItsOwnNameAndColour) {

@@ -16,6 +16,13 @@
 //   11     BlendSpline      blend_spline      a box-spline blend's zero set inside the box (Peters–
 //                                             Wittman 1995 §6): orange, the blend one looks at
 //   12     BlendPrimitive   blend_primitive   the primitives' own surface outside the box: grey
+//   13     SweepCap         sweep_cap         a swept solid's envelope (Conkey–Joy 2000 §3): the
+//                                             generator's boundary at t = 0 or t = 1: steel blue
+//   14     SweepFace        sweep_face        the envelope swept by the generator's faces and
+//                                             edges (their images and characteristic surfaces):
+//                                             teal
+//   15     SweepRankDeficient sweep_rank_deficient  where J123 = J124 = J134 = J234 = 0 inside
+//                                             the 4-dimensional domain: magenta
 //
 // Numbers 0..10 are those of every mesh file volspline has written; a number not in the table (a
 // file may carry any) is drawn grey.
@@ -43,6 +50,9 @@ enum class Part : std::uint8_t {
   Slice = 10,
   BlendSpline = 11,
   BlendPrimitive = 12,
+  SweepCap = 13,
+  SweepFace = 14,
+  SweepRankDeficient = 15,
 };
 
 /// One row of the part table.
@@ -55,7 +65,7 @@ struct PartInfo {
 };
 
 /// Every part, in the order of its number (kParts[n].part has number n).
-inline constexpr std::array<PartInfo, 13> kParts{{
+inline constexpr std::array<PartInfo, 16> kParts{{
     {Part::UMin, "u_min", {0.26, 0.47, 0.82}},             // blue
     {Part::UMax, "u_max", {0.55, 0.72, 0.95}},             // light blue
     {Part::VMin, "v_min", {0.30, 0.66, 0.38}},             // green
@@ -69,6 +79,9 @@ inline constexpr std::array<PartInfo, 13> kParts{{
     {Part::Slice, "slice", {0.93, 0.76, 0.45}},            // sand
     {Part::BlendSpline, "blend_spline", {0.95, 0.33, 0.12}},  // orange, as the blend pictures always were
     {Part::BlendPrimitive, "blend_primitive", {0.70, 0.70, 0.70}},  // grey
+    {Part::SweepCap, "sweep_cap", {0.42, 0.55, 0.72}},     // steel blue
+    {Part::SweepFace, "sweep_face", {0.25, 0.68, 0.66}},   // teal
+    {Part::SweepRankDeficient, "sweep_rank_deficient", {0.85, 0.25, 0.65}},  // magenta
 }};
 
 /// The colour of numbers not in the table.
