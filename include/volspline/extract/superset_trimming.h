@@ -1,0 +1,77 @@
+#pragma once
+// From a superset of a solid's boundary to the boundary itself: the boundary of the image S of
+// a spline map (a folded trivariate solid, a swept solid) lies on a set of sheets that also has
+// pieces inside S (Joy–Duchaineau 1999 and Conkey–Joy 2000 stop there). The sheets are cut along
+// all their mutual intersections (CGAL's exact autorefinement of the triangle soup), so that every
+// piece is wholly on the boundary or wholly inside; each piece is then classified by a certified
+// membership test of two points just off it, on the true surface's side of each, and kept, with
+// its outward side out, only when exactly one of them is outside S. Sheets that cover the same
+// part of the boundary twice (symmetric generators make them) are kept once. docs/envelopes.md.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "volspline/core/progress.h"
+#include "volspline/mesh/triangle_mesh.h"
+
+namespace volspline {
+
+struct SupersetTrimmingOptions {
+  /// Distance of the two test points from the surface, relative to the superset's bounding-box
+  /// diagonal: small against every feature, large against the membership test's resolution.
+  double offset = 1e-6;
+  /// Relative to the diagonal: two kept pieces closer than this (and parallel) are one sheet of
+  /// the boundary covered twice; the smaller one is dropped.
+  double duplicate_distance = 1e-3;
+  /// Test points per piece (the largest triangles); the majority of decided answers counts.
+  int samples_per_piece = 3;
+  Progress* progress = nullptr;
+};
+
+struct SupersetTrimmingStats {
+  std::int64_t superset_triangles = 0, refined_triangles = 0, result_triangles = 0;
+  /// Pieces: connected parts of one sheet between intersection curves.
+  std::int64_t pieces = 0, pieces_boundary = 0, pieces_inside = 0, pieces_outside = 0, pieces_duplicate = 0,
+               pieces_undecided = 0;
+  std::int64_t membership_queries = 0;
+  /// The result: closed (every edge shared by two triangles), consistently oriented, free of
+  /// self-intersections (CGAL, after rounding to doubles), its connected components and volume.
+  bool closed = false, oriented = false, self_intersection_free = false;
+  std::int64_t boundary_edges = 0, nonmanifold_edges = 0, self_intersecting_pairs = 0;
+  int components = 0;
+  double volume = 0;
+  /// Where the result is open: up to a few boundary-edge midpoints, "x y z; ...".
+  std::string open_at;
+  double seconds_refine = 0, seconds_classify = 0, seconds_checks = 0;
+};
+
+/// Where on the true surface a point of the superset is: for superset triangle `triangle` and
+/// barycentric coordinates b (b sums to 1), the point of the sheet it approximates, and the
+/// extra parameter (t of a swept solid; 0 when there is none) interpolated there.
+using SupersetSurfacePoint = std::function<Eigen::Vector3d(std::size_t triangle, const Eigen::Vector3d& barycentric)>;
+/// Is x in S? true inside, false outside, nullopt undecided (certified both ways).
+using ImageMembershipTest = std::function<std::optional<bool>(const Eigen::Vector3d& x)>;
+
+struct TrimmedBoundary {
+  /// The boundary pieces, outward, welded; parts and parameters from the superset triangles
+  /// they were cut from (parameters interpolated at new vertices).
+  TriangleMesh mesh;
+  /// The superset's extra per-vertex parameter, interpolated likewise (empty if none given).
+  std::vector<double> extra;
+  SupersetTrimmingStats stats;
+};
+
+/// Trims `superset` (any orientation, non-manifold edges allowed) to the boundary of S.
+/// `extra` is an optional per-vertex parameter (empty or one per vertex). The membership test
+/// is called from several threads at once. \throw InvalidInput for a malformed superset or
+/// options out of range.
+TrimmedBoundary trim_superset(const TriangleMesh& superset, const std::vector<double>& extra,
+                              const SupersetSurfacePoint& surface_point, const ImageMembershipTest& inside,
+                              const SupersetTrimmingOptions& options = {});
+
+}  // namespace volspline

@@ -1,0 +1,89 @@
+#pragma once
+// The envelope of a swept trivariate solid S = s([0,1]^4), s(u,v,w,t) = c(t) + R(t) g(u,v,w)
+// (Conkey–Joy 2000, eq. 1), one 4-variate spline per generator patch (construct/swept_solid.h).
+//
+// The superset (§3): by the implicit function theorem every boundary point of S is the image of
+//  - a point of a 2-face of the 4-cube domain (24 squares: the caps' faces at t = 0, 1 and the
+//    surfaces swept by the generator's edges), or
+//  - a point where one of the eight 3-faces (the caps t = 0, 1 and the six face sweeps
+//    s(0,v,w,t), ...) folds: the Jacobian of that trivariate map vanishes (Joy–Duchaineau 1999,
+//    Theorem 4.1, found by extract/jacobian_zero_surface.h), or
+//  - an interior point where J123 = J124 = J134 = J234 = 0 (§5–6, extract/rank_deficient_surface.h).
+// The paper lists the boundaries of the eight 3-face solids; taking each 2-face once (it bounds
+// two 3-faces) gives the same set without the duplicate sheets. A 3-face whose Jacobian vanishes
+// identically (a face moving within its own plane) is skipped: its image is a surface whose
+// points all lie on images of its 2-faces (its fibres are curves that end on them).
+//
+// The trimmed envelope (beyond the paper): the superset cut along all its mutual intersections
+// and each piece kept only if points just off it on one side are outside S (a certified
+// point-in-image test, analysis/point_in_image.h), oriented with that side outward
+// (extract/superset_trimming.h). docs/envelopes.md.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "volspline/core/progress.h"
+#include "volspline/extract/jacobian_zero_surface.h"
+#include "volspline/extract/superset_trimming.h"
+#include "volspline/mesh/triangle_mesh.h"
+#include "volspline/spline/tensor_spline.h"
+
+namespace volspline {
+
+enum class SubJacobianBoundMethod { Bezier, Cone };
+
+struct SweptEnvelopeOptions {
+  /// Relative to the diagonal of the control points' bounding box: the chord error the face
+  /// tessellations aim at and the cell size of the implicit parts.
+  double tolerance = 1e-3;
+  SubJacobianBoundMethod bounds = SubJacobianBoundMethod::Bezier;
+  /// Budget of cells examined by each adaptive subdivision (the 3-face zero surfaces and the
+  /// 4-dimensional rank-deficient set); reached budgets are reported in the statistics.
+  std::int64_t max_cells = 2000000;
+  /// Samples per direction of the 2-faces are chosen from the second derivatives so that the
+  /// chord error is about tolerance, between these bounds.
+  int min_samples = 4, max_samples = 256;
+  /// Trim to the true boundary (otherwise the paper's superset).
+  bool trim = true;
+  SupersetTrimmingOptions trimming;
+  Progress* progress = nullptr;
+};
+
+struct SweptEnvelopeStats {
+  /// Superset triangles per source: 2-faces of the caps, 2-faces swept by edges, zero surfaces
+  /// of the caps, of the face sweeps, and the rank-deficient set.
+  std::int64_t cap_face_triangles = 0, edge_sweep_triangles = 0, cap_fold_triangles = 0, face_sweep_fold_triangles = 0,
+               rank_deficient_triangles = 0;
+  /// 3-faces whose Jacobian vanishes identically (skipped, see above).
+  int degenerate_three_faces = 0;
+  /// Cells of the 3-face zero surfaces and of the rank-deficient set.
+  std::int64_t cells_examined = 0, cells_kept = 0;
+  std::int64_t rank_cells_examined = 0, rank_cells_kept = 0;
+  bool budget_reached = false;
+  std::array<int, 4> samples{};
+  double seconds_faces = 0, seconds_folds = 0, seconds_rank_deficient = 0, seconds_total = 0;
+  SupersetTrimmingStats trimming;
+};
+
+struct SweptEnvelope {
+  /// Parts Part::SweepCap, SweepFace, SweepRankDeficient (mesh/parts.h); parameters (u, v, w).
+  TriangleMesh mesh;
+  /// t per vertex.
+  std::vector<double> times;
+  /// Which generator patch each vertex comes from.
+  std::vector<int> patches;
+  SweptEnvelopeStats stats;
+};
+
+/// The superset of the boundary of s(domain) for one or more 4-variate patches, every vertex
+/// with its (u, v, w, t). \throw InvalidInput for no patches, a patch not in R^3, or options out
+/// of range; as rank_deficient_surface for a generator that is not a volume.
+SweptEnvelope swept_envelope_superset(const std::vector<BSplineHypervolume>& patches,
+                                      const SweptEnvelopeOptions& options = {});
+
+/// The superset trimmed to the boundary of the union of the patches' images (options.trim), or
+/// the superset (!options.trim). \throw as swept_envelope_superset.
+SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options = {});
+
+}  // namespace volspline

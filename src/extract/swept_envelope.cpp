@@ -1,0 +1,207 @@
+#include "volspline/extract/swept_envelope.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+#include "volspline/analysis/jacobian_determinant.h"
+#include "volspline/core/error.h"
+#include "volspline/extract/face_tessellation.h"
+#include "volspline/spline/iso_restriction.h"
+
+namespace volspline {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+using Parameter4 = std::array<double, 4>;
+
+double control_diagonal(const std::vector<BSplineHypervolume>& patches) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& s : patches) {
+    const auto& p = s.points();
+    for (std::size_t i = 0; i + 2 < p.size(); i += 3) {
+      const Eigen::Vector3d x(p[i], p[i + 1], p[i + 2]);
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+  }
+  return (hi - lo).norm();
+}
+
+// Samples per direction: the chord error of a segment of length h along direction d is about
+// |s_dd| h^2 / 8, so h = sqrt(8 tol / max |s_dd|) (sampled on a 5^4 grid of the domain), merged
+// with the breakpoints (face_samples) so that every Bézier piece is sampled.
+std::array<std::vector<double>, 4> envelope_samples(const BSplineHypervolume& s, double tol_abs, const SweptEnvelopeOptions& o) {
+  std::array<std::vector<double>, 4> grid;
+  for (int d = 0; d < 4; ++d)
+    for (int i = 0; i <= 4; ++i) grid[static_cast<std::size_t>(d)].push_back(s.domain_min(d) + (s.domain_max(d) - s.domain_min(d)) * i / 4);
+  const auto values = s.evaluate_grid(grid, 2);
+  const auto alphas = derivative_multi_indices<4>(2);
+  const std::size_t n = 625;
+  std::array<std::vector<double>, 4> samples;
+  for (int d = 0; d < 4; ++d) {
+    std::array<int, 4> second{};
+    second[static_cast<std::size_t>(d)] = 2;
+    const std::size_t alpha = static_cast<std::size_t>(std::find(alphas.begin(), alphas.end(), second) - alphas.begin());
+    double m = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+      const double* x = values.data() + (alpha * n + p) * 3;
+      m = std::max(m, Eigen::Vector3d(x[0], x[1], x[2]).norm());
+    }
+    const double length = s.domain_max(d) - s.domain_min(d);
+    const int count = m > 0 ? static_cast<int>(std::ceil(length / std::sqrt(8 * tol_abs / m))) : 1;
+    samples[static_cast<std::size_t>(d)] = face_samples(s.knot_vector(d), std::clamp(count, o.min_samples, o.max_samples));
+  }
+  return samples;
+}
+
+// Whether the trivariate map's Jacobian vanishes identically: |J| on a 17^3 grid is below
+// 1e-9 of |V_a| |V_b| |V_c| there (a nonzero polynomial of lower degree cannot vanish on the grid).
+bool jacobian_vanishes_identically(const BSplineVolume& v) {
+  std::array<std::vector<double>, 3> grid;
+  for (int d = 0; d < 3; ++d)
+    for (int i = 0; i <= 16; ++i) grid[static_cast<std::size_t>(d)].push_back(v.domain_min(d) + (v.domain_max(d) - v.domain_min(d)) * i / 16);
+  const auto g = v.evaluate_grid(grid, 1);
+  const std::size_t n = 17 * 17 * 17;
+  double j = 0, scale = 0;
+  for (std::size_t p = 0; p < n; ++p) {
+    j = std::max(j, std::abs(jacobian_determinant(g.data() + 3 * p, static_cast<std::ptrdiff_t>(3 * n))));
+    double product = 1;
+    for (std::size_t a = 1; a <= 3; ++a) {
+      const double* x = g.data() + (a * n + p) * 3;
+      product *= Eigen::Vector3d(x[0], x[1], x[2]).norm();
+    }
+    scale = std::max(scale, product);
+  }
+  return j <= 1e-9 * scale;
+}
+
+// The superset of one patch into `out`.
+void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs, const SweptEnvelopeOptions& options,
+                    SweptEnvelope& out) {
+  SweptEnvelopeStats& stats = out.stats;
+  const auto samples = envelope_samples(s, tol_abs, options);
+  for (int d = 0; d < 4; ++d)
+    stats.samples[static_cast<std::size_t>(d)] = std::max(stats.samples[static_cast<std::size_t>(d)], static_cast<int>(samples[static_cast<std::size_t>(d)].size()));
+
+  // The 24 squares, sampled on the common per-direction samples so that squares sharing an edge
+  // share its vertices (one vertex per 4-index).
+  auto faces_start = Clock::now();
+  std::array<std::size_t, 4> count{};
+  for (int d = 0; d < 4; ++d) count[static_cast<std::size_t>(d)] = samples[static_cast<std::size_t>(d)].size();
+  std::unordered_map<std::uint64_t, int> vertex_of;
+  std::vector<Parameter4> params;
+  auto vertex = [&](const std::array<std::size_t, 4>& i) {
+    const std::uint64_t key = ((i[0] * count[1] + i[1]) * count[2] + i[2]) * count[3] + i[3];
+    const auto [it, fresh] = vertex_of.try_emplace(key, static_cast<int>(params.size()));
+    if (fresh) params.push_back({samples[0][i[0]], samples[1][i[1]], samples[2][i[2]], samples[3][i[3]]});
+    return it->second;
+  };
+  struct Tri {
+    std::array<int, 3> v;
+    Part part;
+  };
+  std::vector<Tri> tris;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      std::array<int, 2> fixed{};
+      int k = 0;
+      for (int d = 0; d < 4; ++d)
+        if (d != a && d != b) fixed[static_cast<std::size_t>(k++)] = d;
+      const Part part = (fixed[0] == 3 || fixed[1] == 3) ? Part::SweepCap : Part::SweepFace;
+      for (int end0 = 0; end0 < 2; ++end0)
+        for (int end1 = 0; end1 < 2; ++end1) {
+          std::array<std::size_t, 4> idx{};
+          idx[static_cast<std::size_t>(fixed[0])] = end0 ? count[static_cast<std::size_t>(fixed[0])] - 1 : 0;
+          idx[static_cast<std::size_t>(fixed[1])] = end1 ? count[static_cast<std::size_t>(fixed[1])] - 1 : 0;
+          for (std::size_t i = 0; i + 1 < count[static_cast<std::size_t>(a)]; ++i)
+            for (std::size_t j = 0; j + 1 < count[static_cast<std::size_t>(b)]; ++j) {
+              auto at = [&](std::size_t di, std::size_t dj) {
+                std::array<std::size_t, 4> q = idx;
+                q[static_cast<std::size_t>(a)] = i + di;
+                q[static_cast<std::size_t>(b)] = j + dj;
+                return vertex(q);
+              };
+              const int v00 = at(0, 0), v10 = at(1, 0), v01 = at(0, 1), v11 = at(1, 1);
+              tris.push_back({{v00, v10, v11}, part});
+              tris.push_back({{v00, v11, v01}, part});
+              ++(part == Part::SweepCap ? stats.cap_face_triangles : stats.edge_sweep_triangles);
+              ++(part == Part::SweepCap ? stats.cap_face_triangles : stats.edge_sweep_triangles);
+            }
+        }
+    }
+  const std::vector<double> x = s.evaluate_points(params, 0);
+  const int base = static_cast<int>(out.mesh.num_vertices());
+  for (std::size_t v = 0; v < params.size(); ++v) {
+    out.mesh.add_vertex(Eigen::Vector3d(x[3 * v], x[3 * v + 1], x[3 * v + 2]), Eigen::Vector3d(params[v][0], params[v][1], params[v][2]));
+    out.times.push_back(params[v][3]);
+    out.patches.push_back(patch_index);
+  }
+  for (const Tri& t : tris) out.mesh.add_triangle(base + t.v[0], base + t.v[1], base + t.v[2], t.part);
+  stats.seconds_faces += seconds_since(faces_start);
+
+  // The folds of the eight 3-faces (Joy–Duchaineau's implicit surface of each trivariate solid).
+  const auto folds_start = Clock::now();
+  BoundaryOptions zero;
+  zero.tolerance = options.tolerance;
+  zero.max_cells = options.max_cells;
+  zero.snap = true;
+  for (int c = 0; c < 4; ++c)
+    for (int end = 0; end < 2; ++end) {
+      const double value = end ? s.domain_max(c) : s.domain_min(c);
+      const BSplineVolume cube = restrict_to_iso(s, c, value);
+      if (jacobian_vanishes_identically(cube)) {
+        ++stats.degenerate_three_faces;
+        continue;
+      }
+      const SolidBoundary z = jacobian_zero_surface(cube, zero);
+      stats.cells_examined += z.stats.cells_examined;
+      stats.cells_kept += z.stats.cells_kept;
+      if (z.stats.cells_examined >= options.max_cells) stats.budget_reached = true;
+      const Part part = c == 3 ? Part::SweepCap : Part::SweepFace;
+      const int zbase = static_cast<int>(out.mesh.num_vertices());
+      for (std::size_t v = 0; v < z.mesh.num_vertices(); ++v) {
+        Parameter4 p{};
+        int k = 0;
+        for (int d = 0; d < 4; ++d) p[static_cast<std::size_t>(d)] = d == c ? value : z.mesh.parameters[v][k++];
+        out.mesh.add_vertex(z.mesh.positions[v], Eigen::Vector3d(p[0], p[1], p[2]));
+        out.times.push_back(p[3]);
+        out.patches.push_back(patch_index);
+      }
+      for (const auto& t : z.mesh.triangles) out.mesh.add_triangle(zbase + t[0], zbase + t[1], zbase + t[2], part);
+      (c == 3 ? stats.cap_fold_triangles : stats.face_sweep_fold_triangles) += static_cast<std::int64_t>(z.mesh.num_triangles());
+    }
+  stats.seconds_folds += seconds_since(folds_start);
+}
+
+void check_patches(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {
+  if (patches.empty()) throw InvalidInput("expected at least one 4-variate patch", "patches");
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    if (patches[i].dimension() != 3)
+      throw InvalidInput("expected control points in R^3, got dimension " + std::to_string(patches[i].dimension()),
+                         "patches[" + std::to_string(i) + "]");
+  if (!(options.tolerance > 0 && options.tolerance < 1)) throw InvalidInput("expected 0 < tolerance < 1", "tolerance");
+  if (options.min_samples < 2 || options.max_samples < options.min_samples)
+    throw InvalidInput("expected 2 <= min_samples <= max_samples", "samples");
+  if (options.max_cells < 1) throw InvalidInput("expected a positive budget of cells", "max_cells");
+}
+
+}  // namespace
+
+SweptEnvelope swept_envelope_superset(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {
+  check_patches(patches, options);
+  const auto start = Clock::now();
+  SweptEnvelope out;
+  const double tol_abs = options.tolerance * control_diagonal(patches);
+  for (std::size_t i = 0; i < patches.size(); ++i) patch_superset(patches[i], static_cast<int>(i), tol_abs, options, out);
+  out.stats.seconds_total = seconds_since(start);
+  return out;
+}
+
+}  // namespace volspline
