@@ -68,21 +68,34 @@ struct TriangleCuts {
   std::vector<Exact::Segment_3> segments;
 };
 
+// What of a cut matters to one triangle: a point that is not a corner, a segment that does not
+// run along a side (of one that does, its ends, which split the side).
+void add_cut_point(const Exact::Triangle_3& t, const ExactPoint& p, TriangleCuts& c) {
+  if (p != t.vertex(0) && p != t.vertex(1) && p != t.vertex(2)) c.points.push_back(p);
+}
+
+void add_cut_segment(const Exact::Triangle_3& t, const ExactPoint& p, const ExactPoint& q, TriangleCuts& c) {
+  if (p == q) return add_cut_point(t, p, c);
+  for (int i = 0; i < 3; ++i)
+    if (CGAL::collinear(t.vertex(i), t.vertex((i + 1) % 3), p) && CGAL::collinear(t.vertex(i), t.vertex((i + 1) % 3), q)) {
+      add_cut_point(t, p, c);
+      add_cut_point(t, q, c);
+      return;
+    }
+  c.segments.emplace_back(p, q);
+}
+
 void add_intersection(const Exact::Triangle_3& a, const Exact::Triangle_3& b, TriangleCuts& ca, TriangleCuts& cb) {
+  if (!CGAL::do_intersect(a, b)) return;
   const auto result = CGAL::intersection(a, b);
   if (!result) return;
   auto add_segment = [&](const ExactPoint& p, const ExactPoint& q) {
-    if (p == q) {
-      ca.points.push_back(p);
-      cb.points.push_back(p);
-      return;
-    }
-    ca.segments.emplace_back(p, q);
-    cb.segments.emplace_back(p, q);
+    add_cut_segment(a, p, q, ca);
+    add_cut_segment(b, p, q, cb);
   };
   if (const auto* p = boost::get<ExactPoint>(&*result)) {
-    ca.points.push_back(*p);
-    cb.points.push_back(*p);
+    add_cut_point(a, *p, ca);
+    add_cut_point(b, *p, cb);
   } else if (const auto* s = boost::get<Exact::Segment_3>(&*result)) {
     add_segment(s->source(), s->target());
   } else if (const auto* t = boost::get<Exact::Triangle_3>(&*result)) {
@@ -155,12 +168,25 @@ RefinedSoup refine_soup(const std::vector<Eigen::Vector3d>& positions, const std
     int shared = 0;
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) shared += triangles[i][static_cast<std::size_t>(a)] == triangles[j][static_cast<std::size_t>(b)];
+    // Two triangles sharing an edge meet in that edge only, unless they are coplanar and on
+    // the same side of it (a fold).
     if (shared >= 2) {
       const auto& ti = triangles[i];
-      int other = -1;
-      for (int b = 0; b < 3; ++b)
-        if (std::find(ti.begin(), ti.end(), triangles[j][static_cast<std::size_t>(b)]) == ti.end()) other = triangles[j][static_cast<std::size_t>(b)];
-      if (other < 0 || !CGAL::coplanar(tri[i].vertex(0), tri[i].vertex(1), tri[i].vertex(2), exact[static_cast<std::size_t>(other)])) continue;
+      const auto& tj = triangles[j];
+      int other_j = -1, other_i = -1;
+      std::array<int, 2> edge{};
+      int k = 0;
+      for (int b = 0; b < 3; ++b) {
+        const int vj = tj[static_cast<std::size_t>(b)];
+        if (std::find(ti.begin(), ti.end(), vj) == ti.end()) other_j = vj;
+        else if (k < 2) edge[static_cast<std::size_t>(k++)] = vj;
+      }
+      for (int a = 0; a < 3; ++a)
+        if (std::find(tj.begin(), tj.end(), ti[static_cast<std::size_t>(a)]) == tj.end()) other_i = ti[static_cast<std::size_t>(a)];
+      if (other_i < 0 || other_j < 0) continue;  // the same triangle twice
+      const ExactPoint &e0 = exact[static_cast<std::size_t>(edge[0])], &e1 = exact[static_cast<std::size_t>(edge[1])];
+      const ExactPoint &oi = exact[static_cast<std::size_t>(other_i)], &oj = exact[static_cast<std::size_t>(other_j)];
+      if (!CGAL::coplanar(e0, e1, oi, oj) || CGAL::coplanar_orientation(e0, e1, oi, oj) == CGAL::NEGATIVE) continue;
     }
     add_intersection(tri[i], tri[j], cuts[i], cuts[j]);
   }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "volspline/construct/primitives.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
@@ -38,6 +39,88 @@ bool in_translated_box_hull(const Eigen::Vector3d& x, const Eigen::Vector3d& siz
     hi = std::min(hi, b);
   }
   return lo <= hi;
+}
+
+// The true point of a superset triangle at barycentric b: s at the interpolated (u, v, w, t).
+SupersetSurfacePoint surface_point_of(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& e) {
+  return [&patches, &e](std::size_t t, const Eigen::Vector3d& b) {
+    const auto& tri = e.mesh.triangles[t];
+    std::array<double, 4> p{};
+    for (int j = 0; j < 3; ++j) {
+      const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
+      for (int k = 0; k < 3; ++k) p[static_cast<std::size_t>(k)] += b[j] * e.mesh.parameters[v][k];
+      p[3] += b[j] * e.times[v];
+    }
+    const auto& s = patches[static_cast<std::size_t>(e.patches[static_cast<std::size_t>(tri[0])])];
+    for (int d = 0; d < 4; ++d) p[static_cast<std::size_t>(d)] = std::clamp(p[static_cast<std::size_t>(d)], s.domain_min(d), s.domain_max(d));
+    const Eigen::VectorXd x = s.evaluate(p);
+    return Eigen::Vector3d(x[0], x[1], x[2]);
+  };
+}
+
+// The box [1, 2] x [-1/2, 1/2] x [0, 1] turned a full revolution about z: four exact quarter
+// arcs in t, M_l g with M_l the rotation's control matrices.
+BSplineHypervolume revolving_box() {
+  const double h = std::sqrt(0.5);
+  const std::array<std::array<double, 3>, 9> arc{{{1, 0, 1}, {1, 1, h}, {0, 1, 1}, {-1, 1, h}, {-1, 0, 1}, {-1, -1, h}, {0, -1, 1}, {1, -1, h}, {1, 0, 1}}};
+  std::vector<double> points, weights;
+  for (int l = 0; l < 9; ++l)
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const double x = 1 + i, y = j - 0.5, z = k;
+          const double c = arc[static_cast<std::size_t>(l)][0], sn = arc[static_cast<std::size_t>(l)][1];
+          points.insert(points.end(), {c * x - sn * y, sn * x + c * y, z});
+          weights.push_back(arc[static_cast<std::size_t>(l)][2]);
+        }
+  return BSplineHypervolume({KnotVector::bezier(1), KnotVector::bezier(1), KnotVector::bezier(1),
+                             KnotVector(2, {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1})},
+                            3, points, weights);
+}
+
+TEST(SweptEnvelope, RevolvingBoxIsAnAnnulus) {
+  const std::vector<BSplineHypervolume> patches{revolving_box()};
+  const SweptEnvelope superset = swept_envelope_superset(patches);
+  const double r_out = std::sqrt(4.25);
+  const TrimmedBoundary trimmed = trim_superset(superset.mesh, superset.times, surface_point_of(patches, superset), [&](const Eigen::Vector3d& x) {
+    const double r = std::hypot(x.x(), x.y());
+    return std::optional<bool>(r >= 1 && r <= r_out && x.z() >= 0 && x.z() <= 1);
+  });
+  const SupersetTrimmingStats& st = trimmed.stats;
+  std::cerr << "refine " << st.seconds_refine << " classify " << st.seconds_classify << " pieces " << st.pieces << " boundary " << st.pieces_boundary << " dup " << st.pieces_duplicate << " inside " << st.pieces_inside << " outside " << st.pieces_outside << " refined " << st.refined_triangles << " superset " << superset.mesh.num_triangles() << " degenerate3 " << superset.stats.degenerate_three_faces << " folds " << superset.stats.face_sweep_fold_triangles << "\n";
+  EXPECT_TRUE(st.closed) << st.boundary_edges << " boundary edges at " << st.open_at << ", " << st.nonmanifold_edges << " non-manifold";
+  EXPECT_TRUE(st.oriented);
+  EXPECT_TRUE(st.self_intersection_free) << st.self_intersecting_pairs;
+  const double exact = M_PI * (4.25 - 1);
+  EXPECT_NEAR(st.volume, exact, 1e-2 * exact);
+}
+
+// A ball of radius r moved by d: a capsule.
+TEST(SweptEnvelope, TranslatedBallIsACapsule) {
+  const double r = 0.5;
+  const Eigen::Vector3d d(1.2, 0.3, -0.2);
+  const BSplineVolume g = ball(r);
+  std::vector<double> points, weights;
+  for (int l = 0; l < 2; ++l)
+    for (int i = 0; i < g.num_control_points_total(); ++i) {
+      const auto ui = static_cast<std::size_t>(i);
+      points.insert(points.end(), {g.points()[3 * ui] + l * d.x(), g.points()[3 * ui + 1] + l * d.y(), g.points()[3 * ui + 2] + l * d.z()});
+      weights.push_back(g.weights()[ui]);
+    }
+  const std::vector<BSplineHypervolume> patches{BSplineHypervolume(
+      {g.knot_vector(0), g.knot_vector(1), g.knot_vector(2), KnotVector::bezier(1)}, 3, points, weights)};
+  const SweptEnvelope superset = swept_envelope_superset(patches);
+  const TrimmedBoundary trimmed = trim_superset(superset.mesh, superset.times, surface_point_of(patches, superset), [&](const Eigen::Vector3d& x) {
+    const double t = std::clamp(x.dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return std::optional<bool>((x - t * d).norm() <= r);
+  });
+  const SupersetTrimmingStats& st = trimmed.stats;
+  std::cerr << "refine " << st.seconds_refine << " classify " << st.seconds_classify << " pieces " << st.pieces << " boundary " << st.pieces_boundary << " dup " << st.pieces_duplicate << " inside " << st.pieces_inside << " outside " << st.pieces_outside << " undecided " << st.pieces_undecided << " refined " << st.refined_triangles << " superset " << superset.mesh.num_triangles() << " degenerate3 " << superset.stats.degenerate_three_faces << " folds " << superset.stats.face_sweep_fold_triangles << " capfolds " << superset.stats.cap_fold_triangles << " t " << superset.stats.seconds_total << "\n";
+  EXPECT_TRUE(st.closed) << st.boundary_edges << " boundary edges at " << st.open_at << ", " << st.nonmanifold_edges << " non-manifold";
+  EXPECT_TRUE(st.oriented);
+  EXPECT_TRUE(st.self_intersection_free) << st.self_intersecting_pairs;
+  const double exact = M_PI * r * r * d.norm() + 4.0 / 3 * M_PI * r * r * r;
+  EXPECT_NEAR(st.volume, exact, 1e-2 * exact);
 }
 
 TEST(SweptEnvelope, TranslatedBoxIsTheHullOfItsEndPositions) {
