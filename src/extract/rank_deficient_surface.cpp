@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
 #include "volspline/analysis/sub_jacobians.h"
@@ -32,6 +33,10 @@ constexpr int kCoordinateBits = 15;
 constexpr double kRelativeMargin = 1e-10;
 // J123 counts as identically zero below this, relative to the same scale.
 constexpr double kVanishingJacobian = 1e-11;
+
+// Interpolation parameters within this of an edge's end snap to the end (to weld the vertices
+// that rounding would set an ulp apart).
+constexpr double kSnap = 1e-12;
 
 using Lattice = std::array<std::int64_t, 4>;
 
@@ -228,6 +233,17 @@ double rank_condition(const BSplineHypervolume& map, const Point4& x, const std:
   return f;
 }
 
+// |p . s_t| / (|p| |s_t|) for p the normal of the plane of s_u, s_v, s_w where they span one
+// (rank 2): |K| / (|adj M|_F |s_t|), since K = adj(M) s_t = q (p . s_t) and adj M = q p^T, whose
+// rows are s_v x s_w, s_w x s_u, s_u x s_v. 1 where M is singular of rank < 2 or s_t = 0.
+double image_plane_sine(const double* su, const double* sv, const double* sw, const double* st) {
+  const Eigen::Map<const Eigen::Vector3d> u(su), v(sv), w(sw), t(st);
+  const double adjugate = std::sqrt(v.cross(w).squaredNorm() + w.cross(u).squaredNorm() + u.cross(v).squaredNorm());
+  const Eigen::Vector3d K(triple_product(sv, sw, st), -triple_product(su, sw, st), triple_product(su, sv, st));
+  const double denominator = adjugate * t.norm();
+  return denominator > 0 ? std::min(1.0, K.norm() / denominator) : 1.0;
+}
+
 class CellMarcher {
  public:
   CellMarcher(const BSplineHypervolume& map, const Subdivision& subdivision, const std::array<int, 16>& slot)
@@ -251,23 +267,23 @@ class CellMarcher {
     // every Kuhn edge), interpolated from the lower corner.
     const auto edge_point = [&](int a, int b) -> const EdgePoint& {
       if ((a & b) != a) std::swap(a, b);
-      // Where J123 is exactly 0 at a corner the point is that corner, keyed as the grid vertex
-      // (direction bits 0), so that every edge through it gives the same vertex.
-      const int at = j123[static_cast<std::size_t>(a)] == 0 ? a : (j123[static_cast<std::size_t>(b)] == 0 ? b : -1);
-      const std::uint64_t key = at >= 0 ? vertex_key(lattice[static_cast<std::size_t>(at)]) << 4
-                                        : (vertex_key(lattice[static_cast<std::size_t>(a)]) << 4) | static_cast<std::uint64_t>(a ^ b);
-      auto it = points.find(key);
-      if (it != points.end()) return it->second;
       EdgePoint p;
-      p.key = key;
       const double ja = j123[static_cast<std::size_t>(a)], jb = j123[static_cast<std::size_t>(b)];
-      const double s = at >= 0 ? (at == a ? 0.0 : 1.0) : ja / (ja - jb);
+      double s = ja / (ja - jb);
+      // Where J123 vanishes at a corner (to rounding) the point is that corner, keyed as that
+      // grid vertex (direction bits 0), so that every edge through the corner gives one point.
+      const int at = s < kSnap ? a : (s > 1 - kSnap ? b : -1);
+      if (at >= 0) s = at == a ? 0.0 : 1.0;
       for (std::size_t d = 0; d < 4; ++d) {
         const double xa = corner[static_cast<std::size_t>(a)][d], xb = corner[static_cast<std::size_t>(b)][d];
-        p.x[d] = std::clamp(xa + (xb - xa) * s, std::min(xa, xb), std::max(xa, xb));
+        p.x[d] = at == a ? xa : at == b ? xb : std::clamp(xa + (xb - xa) * s, std::min(xa, xb), std::max(xa, xb));
       }
+      p.key = at >= 0 ? vertex_key(lattice[static_cast<std::size_t>(at)]) << 4
+                      : (vertex_key(lattice[static_cast<std::size_t>(a)]) << 4) | static_cast<std::uint64_t>(a ^ b);
+      auto it = points.find(p.key);
+      if (it != points.end()) return it->second;
       p.f = rank_condition(map_, p.x, slot_);
-      return points.emplace(key, p).first->second;
+      return points.emplace(p.key, p).first->second;
     };
     std::array<int, 4> axes{0, 1, 2, 3};
     do {
@@ -341,12 +357,21 @@ class CellMarcher {
     if (np == 0 || nn == 0) return;
     const auto vertex = [&](const EdgePoint* a, const EdgePoint* b) {
       if (b->key < a->key) std::swap(a, b);
-      // f exactly 0 at an end: the vertex is that end, keyed by it alone.
-      if (b->f == 0) a = b;
-      const SurfaceKey key = a->f == 0 ? SurfaceKey{a->key, a->key} : SurfaceKey{a->key, b->key};
-      const double s = a->f == 0 ? 0.0 : a->f / (a->f - b->f);
+      const double s = a->f / (a->f - b->f);
+      // Where f vanishes at an end (to rounding: within kSnap of it along the edge) the vertex
+      // is that end, keyed by it alone, so that every tetrahedron edge through it gives the
+      // same vertex rather than points an ulp apart.
+      if (s < kSnap) {
+        out.vertices.emplace_back(SurfaceKey{a->key, a->key}, a->x);
+        return SurfaceKey{a->key, a->key};
+      }
+      if (s > 1 - kSnap) {
+        out.vertices.emplace_back(SurfaceKey{b->key, b->key}, b->x);
+        return SurfaceKey{b->key, b->key};
+      }
       Point4 x{};
       for (std::size_t d = 0; d < 4; ++d) x[d] = a->x[d] + (b->x[d] - a->x[d]) * s;
+      const SurfaceKey key{a->key, b->key};
       out.vertices.emplace_back(key, x);
       return key;
     };
@@ -384,6 +409,7 @@ RankDeficientSurface rank_deficient_surface(const BSplineHypervolume& map, const
   }
   if (!(options.tolerance > 0 && options.tolerance <= 1)) throw InvalidInput("tolerance must be in (0, 1]");
   if (options.max_cells < 1) throw InvalidInput("max_cells must be at least 1");
+  if (!(options.cusp_sine >= 0 && options.cusp_sine <= 1)) throw InvalidInput("cusp_sine must be in [0, 1]");
   if (options.bounds == JacobianBoundMethod::Cone && map.is_rational()) {
     throw InvalidInput("cone bounds need a polynomial map (the cones bound polynomial derivatives); use bezier bounds");
   }
@@ -442,6 +468,7 @@ RankDeficientSurface rank_deficient_surface(const BSplineHypervolume& map, const
   }
   std::unordered_map<SurfaceKey, int, SurfaceKeyHash> welded;
   std::vector<Point4> domain_points;
+  std::vector<std::array<int, 3>> triangles;
   for (const CellSurface& s : surfaces) {
     result.stats.tetrahedra += s.tetrahedra;
     for (const auto& [key, x] : s.vertices) {
@@ -451,30 +478,48 @@ RankDeficientSurface rank_deficient_surface(const BSplineHypervolume& map, const
       const std::array<int, 3> t{welded.at(tri[0]), welded.at(tri[1]), welded.at(tri[2])};
       // Collapsed where f or J123 vanished exactly at a sample.
       if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
-      result.mesh.triangles.push_back(t);
-      result.mesh.parts.push_back(part_number(Part::SweepRankDeficient));
+      triangles.push_back(t);
     }
   }
-  result.stats.triangles = static_cast<std::int64_t>(result.mesh.triangles.size());
   result.stats.seconds_marching = seconds_since(marching_start);
 
   const auto mapping_start = Clock::now();
+  const std::size_t n = domain_points.size();
+  std::vector<Eigen::Vector3d> positions(n);
+  std::vector<double> plane_sine(n);
   {
-    ProgressPhase phase(options.progress, "mapping", static_cast<double>(domain_points.size()), "vertices");
-    const std::size_t n = domain_points.size();
-    result.mesh.positions.resize(n);
-    result.mesh.parameters.resize(n);
-    result.t.resize(n);
+    ProgressPhase phase(options.progress, "mapping", static_cast<double>(n), "vertices");
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-      const Point4& x = domain_points[i];
-      double p[3];
-      map.evaluate(x, p);
-      result.mesh.positions[i] = Eigen::Vector3d(p[0], p[1], p[2]);
-      result.mesh.parameters[i] = Eigen::Vector3d(x[0], x[1], x[2]);
-      result.t[i] = x[3];
+      const std::vector<double> d = map.evaluate_derivatives(domain_points[i], 1);
+      positions[i] = Eigen::Vector3d(d[0], d[1], d[2]);
+      plane_sine[i] = image_plane_sine(d.data() + 3, d.data() + 6, d.data() + 9, d.data() + 12);
       phase.advance();
     });
   }
+  // Drop the cusp sheets (every vertex with s_t well out of the image plane), then the vertices
+  // no triangle uses, renumbering in order.
+  std::vector<int> renumbered(n, -1);
+  for (const auto& t : triangles) {
+    if (plane_sine[static_cast<std::size_t>(t[0])] > options.cusp_sine && plane_sine[static_cast<std::size_t>(t[1])] > options.cusp_sine &&
+        plane_sine[static_cast<std::size_t>(t[2])] > options.cusp_sine) {
+      ++result.stats.triangles_at_cusps;
+      continue;
+    }
+    std::array<int, 3> kept_triangle{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      int& index = renumbered[static_cast<std::size_t>(t[k])];
+      if (index < 0) {
+        index = static_cast<int>(result.mesh.positions.size());
+        const Point4& x = domain_points[static_cast<std::size_t>(t[k])];
+        result.mesh.positions.push_back(positions[static_cast<std::size_t>(t[k])]);
+        result.mesh.parameters.emplace_back(x[0], x[1], x[2]);
+        result.t.push_back(x[3]);
+      }
+      kept_triangle[k] = index;
+    }
+    result.mesh.add_triangle(kept_triangle[0], kept_triangle[1], kept_triangle[2], Part::SweepRankDeficient);
+  }
+  result.stats.triangles = static_cast<std::int64_t>(result.mesh.triangles.size());
   result.stats.seconds_mapping = seconds_since(mapping_start);
   result.stats.seconds_total = seconds_since(start);
   return result;

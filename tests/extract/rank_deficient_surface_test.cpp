@@ -65,7 +65,9 @@ void expect_conforming(const RankDeficientSurface& s, const std::vector<int>& op
   }
   // Welded: no two vertices at the same point of the domain.
   std::set<std::array<double, 4>> distinct;
-  for (std::size_t i = 0; i < s.t.size(); ++i) distinct.insert(domain_point(s, i));
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    distinct.insert(domain_point(s, i));
+  }
   EXPECT_EQ(distinct.size(), s.t.size());
 }
 
@@ -206,6 +208,41 @@ TEST(RankDeficientSurface, TinyProtrusionIsFoundAndTheSurfaceIsClosedInTheInteri
   expect_conforming(s, {3});
 }
 
+// A fold with a cusp: h = (w - c)^3 / 3 - (u - a)(w - c), J123 = (w - c)^2 - (u - a), the fold
+// surface u = a + (w - c)^2 with null direction q = e_w, tangent to it on the cusp line
+// u = a, w = c. Along d = (1, 0, e), p . d = (w - c) + e: the rank-deficient set is the plane
+// {w = c - e, u = a + e^2} x (v, t); f = 2 (w - c)(w - c + e) changes sign on the cusp plane
+// {u = a, w = c} x (v, t) too, where s_t is at the angle asin(e / sqrt(1 + e^2)) to the image plane.
+TEST(RankDeficientSurface, CuspSheetIsDroppedAndTheRankDeficientPlaneKept) {
+  const double a = 0.3, c = 0.45, e = 0.2;
+  const std::vector<Monomial> h{{1.0 / 3, 0, 0, 3}, {-c, 0, 0, 2}, {c * c, 0, 0, 1}, {-c * c * c / 3, 0, 0, 0},
+                                {-1.0, 1, 0, 1},    {c, 1, 0, 0},  {a, 0, 0, 1},     {-a * c, 0, 0, 0}};
+  const auto map = translated_generator(h, {1, 1, 3}, {1.0, 0.0, e});
+  RankDeficientOptions options;
+  options.tolerance = 1.0 / 4;
+  const auto s = rank_deficient_surface(map, options);
+  ASSERT_GT(s.mesh.num_triangles(), 20u);
+  EXPECT_GT(s.stats.triangles_at_cusps, 20);
+  const double cell = 1.0 / 4;
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    const auto x = domain_point(s, i);
+    EXPECT_NEAR(x[2], c - e, cell * cell) << "vertex " << i;
+    EXPECT_NEAR(x[0], a + e * e, cell * cell) << "vertex " << i;
+  }
+  expect_conforming(s, {1, 3});
+  // Keeping every triangle keeps the cusp sheet as well.
+  options.cusp_sine = 1;
+  const auto all = rank_deficient_surface(map, options);
+  EXPECT_EQ(all.stats.triangles_at_cusps, 0);
+  EXPECT_EQ(all.stats.triangles, s.stats.triangles + s.stats.triangles_at_cusps);
+  std::size_t on_cusp = 0;
+  for (std::size_t i = 0; i < all.t.size(); ++i) {
+    const auto x = domain_point(all, i);
+    if (std::abs(x[2] - c) < cell / 2 && std::abs(x[0] - a) < cell / 2) ++on_cusp;
+  }
+  EXPECT_GT(on_cusp, 10u);
+}
+
 TEST(RankDeficientSurface, DegenerateAndInvalidInputThrow) {
   // h = u v does not depend on w: J123 = 0 everywhere.
   const auto flat = translated_generator({{1.0, 1, 1, 0}}, {1, 1, 1}, {0, 0, 1});
@@ -218,6 +255,9 @@ TEST(RankDeficientSurface, DegenerateAndInvalidInputThrow) {
   EXPECT_THROW(rank_deficient_surface(map, options), InvalidInput);
   options.tolerance = 0.1;
   options.max_cells = 0;
+  EXPECT_THROW(rank_deficient_surface(map, options), InvalidInput);
+  options.max_cells = 100;
+  options.cusp_sine = -0.5;
   EXPECT_THROW(rank_deficient_surface(map, options), InvalidInput);
 }
 

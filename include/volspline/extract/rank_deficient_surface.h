@@ -30,7 +30,9 @@
 // (J234, -J134, J124). On J123 = 0 the adjugate has rank one, adj = q p^T with q the null vector of
 // the Jacobian of the generator and p the normal of its image plane, so f = (q . grad J123)(p . s_t):
 // one continuous polynomial with no sign to choose, vanishing where p . s_t = 0 (the rank-deficient
-// set) and on the cusp curves of the fold (q . grad J123 = 0, q tangent to the fold). f is
+// set) and on the cusp curves of the fold (q . grad J123 = 0, q tangent to the fold), whose sheets
+// (cusp curve x t) the marching finds too and the output drops by the angle between s_t and the
+// image plane at their vertices (RankDeficientOptions::cusp_sine). f is
 // evaluated exactly (second derivatives of s) at every edge point, never interpolated from the
 // grid. Surface vertices are welded by the pair of edge-point keys of their tetrahedron edge, so
 // the output is a conforming mesh.
@@ -54,6 +56,12 @@ struct RankDeficientOptions {
   /// Budget of cells examined (>= 1). When it runs out the cells not examined are left out,
   /// counted in stats.cells_unresolved and flagged by stats.budget_exhausted.
   std::int64_t max_cells = 2000000;
+  /// Cusp sheets: f also changes sign where the fold's null direction is tangent to it (see
+  /// above), though there s_t is generally out of the image plane. A triangle is dropped when at
+  /// each of its vertices the sine of the angle between s_t and the plane of s_u, s_v, s_w
+  /// exceeds this (on the rank-deficient set it is 0, up to the interpolation error). 1 keeps
+  /// every triangle.
+  double cusp_sine = 0.1;
   /// Receives the phases "subdivision" (counts cells), "marching" (cells) and "mapping".
   Progress* progress = nullptr;
 };
@@ -72,6 +80,8 @@ struct RankDeficientStats {
   /// Tetrahedra of the hypersurface J123 = 0 made by the marching 4-simplices, and triangles
   /// of the output.
   std::int64_t tetrahedra = 0, triangles = 0;
+  /// Triangles dropped as lying on a cusp sheet (RankDeficientOptions::cusp_sine).
+  std::int64_t triangles_at_cusps = 0;
   double seconds_subdivision = 0, seconds_marching = 0, seconds_mapping = 0, seconds_total = 0;
 };
 
@@ -87,7 +97,7 @@ struct RankDeficientSurface {
 /// The rank-deficient set of a 4-variate map into R^3 (a swept solid). Deterministic: the same
 /// input gives the same mesh whatever the number of threads (unless the budget runs out).
 /// \throw InvalidInput if the map is not into R^3, options are out of range (tolerance not in
-/// (0, 1], max_cells < 1, more than 2^15 finest cells along a parameter), cone bounds are asked
+/// (0, 1], cusp_sine not in [0, 1], max_cells < 1, more than 2^15 finest cells along a parameter), cone bounds are asked
 /// for a rational map, or J123 vanishes identically ("generator is not a volume").
 RankDeficientSurface rank_deficient_surface(const BSplineHypervolume& map, const RankDeficientOptions& options = {});
 
