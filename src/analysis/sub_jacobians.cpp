@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "volspline/analysis/cone_bounds.h"
+#include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
@@ -72,10 +73,6 @@ Scaled det4(const Row& p, const Row& a, const std::array<std::array<Scaled, 4>, 
 
 }  // namespace
 
-double triple_product(const double* a, const double* b, const double* c) {
-  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-}
-
 SubJacobiansBernstein sub_jacobian_coefficients(const BSplineHypervolume& cell) {
   if (cell.dimension() != 3) {
     throw InvalidInput("the sub-Jacobians need control points in R^3, got dimension " + std::to_string(cell.dimension()));
@@ -128,8 +125,10 @@ std::array<double, 4> sub_jacobians_at(const BSplineHypervolume& map, const std:
   }
   const std::vector<double> d = map.evaluate_derivatives(t, 1);
   // Rows 1..4 are s_u, s_v, s_w, s_t (derivative_multi_indices order).
-  const double *su = d.data() + 3, *sv = d.data() + 6, *sw = d.data() + 9, *st = d.data() + 12;
-  return {triple_product(su, sv, sw), triple_product(su, sv, st), triple_product(su, sw, st), triple_product(sv, sw, st)};
+  const auto row = [&](int a) { return Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(d.data() + 3 * a)); };
+  const Eigen::Vector3d su = row(1), sv = row(2), sw = row(3), st = row(4);
+  return {jacobian_determinant(su, sv, sw), jacobian_determinant(su, sv, st), jacobian_determinant(su, sw, st),
+          jacobian_determinant(sv, sw, st)};
 }
 
 }  // namespace volspline

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
+#include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/analysis/sub_jacobians.h"
 #include "volspline/core/error.h"
 #include "volspline/mesh/parts.h"
@@ -216,19 +217,21 @@ struct CellSurface {
 // derivatives of s.
 double rank_condition(const BSplineHypervolume& map, const Point4& x, const std::array<int, 16>& slot) {
   const std::vector<double> d = map.evaluate_derivatives(x, 2);
-  const auto first = [&](int a) { return d.data() + 3 * slot[static_cast<std::size_t>(a)]; };
+  const auto at = [&](int index) {
+    return Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(d.data() + 3 * slot[static_cast<std::size_t>(index)]));
+  };
   // The pairs a <= b are stored row by row: (0,0) (0,1) (0,2) (0,3) (1,1) ... (3,3).
   const auto second = [&](int a, int b) {
     const int lo = std::min(a, b), hi = std::max(a, b);
-    return d.data() + 3 * slot[static_cast<std::size_t>(4 + 4 * lo - lo * (lo - 1) / 2 + hi - lo)];
+    return at(4 + 4 * lo - lo * (lo - 1) / 2 + hi - lo);
   };
-  const double *su = first(0), *sv = first(1), *sw = first(2), *st = first(3);
-  const double j124 = triple_product(su, sv, st), j134 = triple_product(su, sw, st), j234 = triple_product(sv, sw, st);
-  const std::array<double, 3> K{j234, -j134, j124};
+  const Eigen::Vector3d su = at(0), sv = at(1), sw = at(2), st = at(3);
+  const Eigen::Vector3d K(jacobian_determinant(sv, sw, st), -jacobian_determinant(su, sw, st), jacobian_determinant(su, sv, st));
   double f = 0;
   for (int a = 0; a < 3; ++a) {
-    const double gradient = triple_product(second(0, a), sv, sw) + triple_product(su, second(1, a), sw) + triple_product(su, sv, second(2, a));
-    f += K[static_cast<std::size_t>(a)] * gradient;
+    const double gradient =
+        jacobian_determinant(second(0, a), sv, sw) + jacobian_determinant(su, second(1, a), sw) + jacobian_determinant(su, sv, second(2, a));
+    f += K[a] * gradient;
   }
   return f;
 }
@@ -236,10 +239,11 @@ double rank_condition(const BSplineHypervolume& map, const Point4& x, const std:
 // |p . s_t| / (|p| |s_t|) for p the normal of the plane of s_u, s_v, s_w where they span one
 // (rank 2): |K| / (|adj M|_F |s_t|), since K = adj(M) s_t = q (p . s_t) and adj M = q p^T, whose
 // rows are s_v x s_w, s_w x s_u, s_u x s_v. 1 where M is singular of rank < 2 or s_t = 0.
-double image_plane_sine(const double* su, const double* sv, const double* sw, const double* st) {
-  const Eigen::Map<const Eigen::Vector3d> u(su), v(sv), w(sw), t(st);
+double image_plane_sine(const double* derivatives) {
+  const auto row = [&](int a) { return Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(derivatives + 3 * a)); };
+  const Eigen::Vector3d u = row(1), v = row(2), w = row(3), t = row(4);
   const double adjugate = std::sqrt(v.cross(w).squaredNorm() + w.cross(u).squaredNorm() + u.cross(v).squaredNorm());
-  const Eigen::Vector3d K(triple_product(sv, sw, st), -triple_product(su, sw, st), triple_product(su, sv, st));
+  const Eigen::Vector3d K(jacobian_determinant(v, w, t), -jacobian_determinant(u, w, t), jacobian_determinant(u, v, t));
   const double denominator = adjugate * t.norm();
   return denominator > 0 ? std::min(1.0, K.norm() / denominator) : 1.0;
 }
@@ -492,7 +496,7 @@ RankDeficientSurface rank_deficient_surface(const BSplineHypervolume& map, const
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
       const std::vector<double> d = map.evaluate_derivatives(domain_points[i], 1);
       positions[i] = Eigen::Vector3d(d[0], d[1], d[2]);
-      plane_sine[i] = image_plane_sine(d.data() + 3, d.data() + 6, d.data() + 9, d.data() + 12);
+      plane_sine[i] = image_plane_sine(d.data());
       phase.advance();
     });
   }

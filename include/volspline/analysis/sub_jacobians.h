@@ -38,9 +38,6 @@ SubJacobiansBernstein sub_jacobian_coefficients(const BSplineHypervolume& cell);
 /// \throw InvalidInput if t is outside the domain or the map is not into R^3.
 std::array<double, 4> sub_jacobians_at(const BSplineHypervolume& map, const std::array<double, 4>& t);
 
-/// det[a b c] = a . (b x c) of three vectors in R^3.
-double triple_product(const double* a, const double* b, const double* c);
-
 /// Which proof shows that the four sub-Jacobians cannot vanish together on a cell.
 enum class RankCertificate {
   /// None found: the cell may hold rank-deficient points.
