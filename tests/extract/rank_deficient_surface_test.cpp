@@ -10,9 +10,12 @@
 #include <tuple>
 #include <vector>
 
+#include <tbb/global_control.h>
+
 #include "support/translated_generators.h"
 #include "volspline/analysis/sub_jacobians.h"
 #include "volspline/core/error.h"
+#include "volspline/core/progress.h"
 #include "volspline/mesh/parts.h"
 
 namespace volspline {
@@ -102,6 +105,8 @@ TEST_P(FoldedSweep, GivesTheAnalyticSetWithVanishingSubJacobians) {
   EXPECT_EQ(map.is_rational(), GetParam() != 1.0);
   RankDeficientOptions options;
   options.tolerance = 1.0 / 8;
+  // This fold has no cusp (q . grad J123 = 2): f alone must find the set, with no triangle dropped.
+  options.cusp_sine = 1;
   const auto s = rank_deficient_surface(map, options);
   ASSERT_GT(s.mesh.num_triangles(), 50u);
   EXPECT_EQ(s.t.size(), s.mesh.num_vertices());
@@ -259,6 +264,9 @@ TEST(RankDeficientSurface, DegenerateAndInvalidInputThrow) {
   options.max_cells = 100;
   options.cusp_sine = -0.5;
   EXPECT_THROW(rank_deficient_surface(map, options), InvalidInput);
+  options.cusp_sine = 0.1;
+  options.bounds = JacobianBoundMethod::Cone;
+  EXPECT_THROW(rank_deficient_surface(folded_sweep(3.0), options), InvalidInput);
 }
 
 TEST(RankDeficientSurface, BudgetExhaustionIsReported) {
@@ -271,13 +279,25 @@ TEST(RankDeficientSurface, BudgetExhaustionIsReported) {
   EXPECT_EQ(s.stats.cells_examined, 40);
 }
 
-TEST(RankDeficientSurface, OutputIsDeterministic) {
+TEST(RankDeficientSurface, OutputIsTheSameOnOneThreadAndReportsItsPhases) {
+  std::vector<std::string> phases;
+  Progress progress([&](const ProgressEvent& e) {
+    if (e.kind == ProgressEvent::Kind::PhaseBegin) phases.emplace_back(e.phase);
+  });
   RankDeficientOptions options;
   options.tolerance = 1.0 / 8;
+  options.progress = &progress;
   const auto first = rank_deficient_surface(folded_sweep(), options);
-  const auto second = rank_deficient_surface(folded_sweep(), options);
+  EXPECT_EQ(phases, (std::vector<std::string>{"subdivision", "marching", "mapping"}));
+  options.progress = nullptr;
+  RankDeficientSurface second;
+  {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    second = rank_deficient_surface(folded_sweep(), options);
+  }
   EXPECT_EQ(first.mesh.triangles, second.mesh.triangles);
   EXPECT_EQ(first.t, second.t);
+  EXPECT_EQ(first.stats.cells_examined, second.stats.cells_examined);
 }
 
 }  // namespace
