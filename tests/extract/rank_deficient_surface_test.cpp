@@ -17,6 +17,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/progress.h"
 #include "volspline/mesh/parts.h"
+#include "volspline/spline/knot_insertion.h"
 
 namespace volspline {
 namespace {
@@ -133,6 +134,26 @@ TEST_P(FoldedSweep, GivesTheAnalyticSetWithVanishingSubJacobians) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RankDeficientSurface, FoldedSweep, ::testing::Values(1.0, 3.0));
+
+// The same map cut into 2 x 2 x 1 x 2 Bézier pieces of unequal sizes by knot insertion: the grids
+// of neighbouring pieces meet on their common faces, so the surface has no crack there either.
+TEST(RankDeficientSurface, BezierPiecesOfUnequalSizesJoinWithoutCracks) {
+  const auto map = insert_knot(insert_knot(insert_knot(folded_sweep(), 0, 0.5), 1, 0.6), 3, 0.3);
+  RankDeficientOptions options;
+  options.tolerance = 1.0 / 4;
+  const auto s = rank_deficient_surface(map, options);
+  ASSERT_GT(s.mesh.num_triangles(), 50u);
+  bool crosses_piece_boundary = false;
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    const auto x = domain_point(s, i);
+    EXPECT_NEAR(x[2], kFoldW, 1e-12);
+    const double residual = x[1] * x[1] + 2 * x[0] * x[1] - 0.45, gradient = std::hypot(2 * x[1], 2 * x[1] + 2 * x[0]);
+    EXPECT_LT(std::abs(residual) / gradient, 0.3 * 0.3 / 4);
+    crosses_piece_boundary = crosses_piece_boundary || x[0] == 0.5 || x[1] == 0.6 || x[3] == 0.3;
+  }
+  EXPECT_TRUE(crosses_piece_boundary);
+  expect_conforming(s, {0, 1, 3});
+}
 
 // The fold, sheared, turned as it moves (R(t) = I + t A): a set that changes with t and no closed form; the
 // four sub-Jacobians vanish at every vertex to the interpolation error, and the mesh has no
