@@ -147,48 +147,41 @@ RankCertificate bernstein_rank_certificate(const BernsteinTensor<4>& minors, con
     }
     if (positive || negative) return RankCertificate::Sign;
   }
-  // Normalised 4-vectors (a zero vector cannot be separated from the origin: no certificate).
-  std::vector<std::array<double, 4>> unit(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    double norm = 0;
-    for (std::size_t k = 0; k < 4; ++k) norm += c[4 * i + k] * c[4 * i + k];
-    norm = std::sqrt(norm);
-    if (!(norm > 0)) return RankCertificate::None;
-    for (std::size_t k = 0; k < 4; ++k) unit[i][k] = c[4 * i + k] / norm;
-  }
+  // Inverse lengths of the 4-vectors (a zero vector cannot be separated from the origin: no
+  // certificate).
+  std::vector<double> inverse_norm(n);
   std::array<double, 4> d{0, 0, 0, 0};
-  for (const auto& e : unit) {
-    for (std::size_t k = 0; k < 4; ++k) d[k] += e[k];
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* e = c + 4 * i;
+    const double norm = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3]);
+    if (!(norm > 0)) return RankCertificate::None;
+    inverse_norm[i] = 1 / norm;
+    for (std::size_t k = 0; k < 4; ++k) d[k] += e[k] * inverse_norm[i];
   }
   // The certificate is checked on the unnormalised coefficients: d . c_i > sum |d_k| margin_k
-  // keeps d . c > 0 for every perturbation of c within the margins.
-  const auto proves = [&](const std::array<double, 4>& dir, std::size_t& worst) {
+  // keeps d . c > 0 for every perturbation of c within the margins. The perceptron steps use
+  // the normalised vectors, so that no coefficient dominates by its size.
+  constexpr int kPerceptronSteps = 8;
+  for (int step = 0; step <= kPerceptronSteps; ++step) {
     double slack = 0;
-    for (std::size_t k = 0; k < 4; ++k) slack += std::abs(dir[k]) * margins[k];
+    for (std::size_t k = 0; k < 4; ++k) slack += std::abs(d[k]) * margins[k];
     bool all = true;
     double lowest = std::numeric_limits<double>::infinity();
+    std::size_t worst = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      const double dot = dir[0] * c[4 * i] + dir[1] * c[4 * i + 1] + dir[2] * c[4 * i + 2] + dir[3] * c[4 * i + 3];
-      if (!(dot > slack)) all = false;
-      double unit_dot = 0;
-      for (std::size_t k = 0; k < 4; ++k) unit_dot += dir[k] * unit[i][k];
-      if (unit_dot < lowest) {
-        lowest = unit_dot;
+      const double* e = c + 4 * i;
+      const double dot = d[0] * e[0] + d[1] * e[1] + d[2] * e[2] + d[3] * e[3];
+      all = all && dot > slack;
+      if (dot * inverse_norm[i] < lowest) {
+        lowest = dot * inverse_norm[i];
         worst = i;
       }
     }
-    return all;
-  };
-  constexpr int kPerceptronSteps = 24;
-  for (int step = 0; step <= kPerceptronSteps; ++step) {
-    std::size_t worst = 0;
-    if (proves(d, worst)) return RankCertificate::Hull;
-    // Perceptron step: move towards the worst-separated normalised vector, then renormalise.
-    double norm = 0;
-    for (std::size_t k = 0; k < 4; ++k) norm += d[k] * d[k];
-    norm = std::sqrt(norm);
+    if (all) return RankCertificate::Hull;
+    // Perceptron step: the unit direction moved towards the worst-separated unit vector.
+    double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + d[3] * d[3]);
     if (!(norm > 0)) norm = 1;
-    for (std::size_t k = 0; k < 4; ++k) d[k] = d[k] / norm + unit[worst][k];
+    for (std::size_t k = 0; k < 4; ++k) d[k] = d[k] / norm + c[4 * worst + k] * inverse_norm[worst];
   }
   return RankCertificate::None;
 }
