@@ -97,8 +97,9 @@ struct RankDeficientSurface {
 /// The rank-deficient set of a 4-variate map into R^3 (a swept solid). Deterministic: the same
 /// input gives the same mesh whatever the number of threads (unless the budget runs out).
 /// \throw InvalidInput if the map is not into R^3, options are out of range (tolerance not in
-/// (0, 1], cusp_sine not in [0, 1], max_cells < 1, more than 2^15 finest cells along a parameter), cone bounds are asked
-/// for a rational map, or J123 vanishes identically ("generator is not a volume").
+/// (0, 1], cusp_sine not in [0, 1], max_cells < 1, 2^15 or more finest cells along a
+/// parameter), cone bounds are asked for a rational map, or J123 vanishes identically
+/// ("generator is not a volume: its Jacobian vanishes identically").
 RankDeficientSurface rank_deficient_surface(const BSplineHypervolume& map, const RankDeficientOptions& options = {});
 
 }  // namespace volspline
