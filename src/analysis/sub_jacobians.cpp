@@ -1,0 +1,208 @@
+#include "volspline/analysis/sub_jacobians.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "volspline/analysis/cone_bounds.h"
+#include "volspline/analysis/jacobian_determinant.h"
+#include "volspline/core/error.h"
+
+namespace volspline {
+
+namespace {
+
+using Scaled = ScaledBernsteinTensor<4>;
+// Rows of the sub-Jacobians: the point (homogeneous only) and the four first partials.
+using Row = std::array<Scaled, 4>;
+
+// The cell's homogeneous coefficients differentiated along `direction` (-1: not differentiated)
+// with respect to the global parameter, the components `columns` in that order, scaled.
+Row scaled_row(const BSplineHypervolume& cell, const BernsteinTensor<4>& h, int direction, const std::array<int, 4>& columns,
+               int count) {
+  const BernsteinTensor<4> f =
+      direction < 0 ? h : bernstein_derivative(h, direction, cell.domain_max(direction) - cell.domain_min(direction));
+  Row row;
+  for (std::size_t c = 0; c < static_cast<std::size_t>(count); ++c) row[c] = bernstein_scaled(bernstein_components(f, columns[c]));
+  return row;
+}
+
+Scaled zero_product(const Scaled& a, const Scaled& b) { return Scaled(product_degrees(a.degrees, b.degrees)); }
+
+// The 2 x 2 minors of rows b and c over the column pairs (i, j), i < j < n.
+std::array<std::array<Scaled, 4>, 4> minors2(const Row& b, const Row& c, int n) {
+  std::array<std::array<Scaled, 4>, 4> m;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
+    for (std::size_t j = i + 1; j < static_cast<std::size_t>(n); ++j) {
+      m[i][j] = zero_product(b[0], c[0]);
+      scaled_product_add(b[i], c[j], 1.0, m[i][j]);
+      scaled_product_add(b[j], c[i], -1.0, m[i][j]);
+    }
+  }
+  return m;
+}
+
+// det[a; b; c] over the columns `cols` (three of them), from the 2 x 2 minors of (b, c).
+Scaled det3(const Row& a, const std::array<std::array<Scaled, 4>, 4>& m, const std::array<std::size_t, 3>& cols) {
+  Scaled d = zero_product(a[cols[0]], m[cols[1]][cols[2]]);
+  scaled_product_add(a[cols[0]], m[cols[1]][cols[2]], 1.0, d);
+  scaled_product_add(a[cols[1]], m[cols[0]][cols[2]], -1.0, d);
+  scaled_product_add(a[cols[2]], m[cols[0]][cols[1]], 1.0, d);
+  return d;
+}
+
+// det[p; a; b; c] (4 columns), expanded along p: sum_j (-1)^j p_j det[a; b; c without column j].
+Scaled det4(const Row& p, const Row& a, const std::array<std::array<Scaled, 4>, 4>& m) {
+  Scaled d;
+  for (std::size_t j = 0; j < 4; ++j) {
+    std::array<std::size_t, 3> cols{};
+    std::size_t k = 0;
+    for (std::size_t c = 0; c < 4; ++c) {
+      if (c != j) cols[k++] = c;
+    }
+    const Scaled minor = det3(a, m, cols);
+    if (j == 0) d = zero_product(p[0], minor);
+    scaled_product_add(p[j], minor, (j % 2 == 0) ? 1.0 : -1.0, d);
+  }
+  return d;
+}
+
+}  // namespace
+
+SubJacobiansBernstein sub_jacobian_coefficients(const BSplineHypervolume& cell) {
+  if (cell.dimension() != 3) {
+    throw InvalidInput("the sub-Jacobians need control points in R^3, got dimension " + std::to_string(cell.dimension()));
+  }
+  for (int d = 0; d < 4; ++d) {
+    if (!cell.knot_vector(d).is_bezier()) {
+      throw InvalidInput("sub_jacobian_coefficients needs a single Bézier cell; direction " + std::to_string(d) +
+                         " has interior knots (split it with bezier_pieces first)");
+    }
+  }
+  BernsteinTensor<4> h;
+  h.degrees = cell.degrees();
+  h.components = cell.coefficient_size();
+  h.coefficients = cell.homogeneous();
+
+  const bool rational = cell.is_rational();
+  // Homogeneous storage is (wx, wy, wz, w); the determinant identity wants w first.
+  const std::array<int, 4> columns = rational ? std::array<int, 4>{3, 0, 1, 2} : std::array<int, 4>{0, 1, 2, 0};
+  const int n = rational ? 4 : 3;
+  const Row du = scaled_row(cell, h, 0, columns, n), dv = scaled_row(cell, h, 1, columns, n),
+            dw = scaled_row(cell, h, 2, columns, n), dt = scaled_row(cell, h, 3, columns, n);
+  // J123 = u . (v x w), J124 = u . (v x t), J134 = u . (w x t), J234 = v . (w x t): three
+  // cross products (2 x 2 minors) serve the four.
+  const auto m_vw = minors2(dv, dw, n), m_vt = minors2(dv, dt, n), m_wt = minors2(dw, dt, n);
+  std::array<Scaled, 4> scaled;
+  if (!rational) {
+    const std::array<std::size_t, 3> xyz{0, 1, 2};
+    scaled = {det3(du, m_vw, xyz), det3(du, m_vt, xyz), det3(du, m_wt, xyz), det3(dv, m_wt, xyz)};
+  } else {
+    const Row p = scaled_row(cell, h, -1, columns, 4);
+    scaled = {det4(p, du, m_vw), det4(p, du, m_vt), det4(p, du, m_wt), det4(p, dv, m_wt)};
+  }
+  std::array<int, 4> common{0, 0, 0, 0};
+  for (const auto& s : scaled) {
+    for (std::size_t d = 0; d < 4; ++d) common[d] = std::max(common[d], s.degrees[d]);
+  }
+  SubJacobiansBernstein result;
+  result.homogeneous = rational;
+  result.minors = BernsteinTensor<4>(common, 4);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const BernsteinTensor<4> elevated = bernstein_elevate(bernstein_unscaled(std::move(scaled[k])), common);
+    for (std::size_t i = 0; i < elevated.count(); ++i) result.minors.coefficients[4 * i + k] = elevated.coefficients[i];
+  }
+  return result;
+}
+
+std::array<double, 4> sub_jacobians_at(const BSplineHypervolume& map, const std::array<double, 4>& t) {
+  if (map.dimension() != 3) {
+    throw InvalidInput("the sub-Jacobians need a map into R^3, got dimension " + std::to_string(map.dimension()));
+  }
+  const std::vector<double> d = map.evaluate_derivatives(t, 1);
+  // Rows 1..4 are s_u, s_v, s_w, s_t (derivative_multi_indices order).
+  const auto row = [&](int a) { return Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(d.data() + 3 * a)); };
+  const Eigen::Vector3d su = row(1), sv = row(2), sw = row(3), st = row(4);
+  return {jacobian_determinant(su, sv, sw), jacobian_determinant(su, sv, st), jacobian_determinant(su, sw, st),
+          jacobian_determinant(sv, sw, st)};
+}
+
+}  // namespace volspline
+
+namespace volspline {
+
+RankCertificate bernstein_rank_certificate(const BernsteinTensor<4>& minors, const std::array<double, 4>& margins) {
+  const std::size_t n = minors.count();
+  const double* c = minors.coefficients.data();
+  for (std::size_t k = 0; k < 4; ++k) {
+    bool positive = true, negative = true;
+    for (std::size_t i = 0; i < n && (positive || negative); ++i) {
+      const double x = c[4 * i + k];
+      positive = positive && x > margins[k];
+      negative = negative && x < -margins[k];
+    }
+    if (positive || negative) return RankCertificate::Sign;
+  }
+  // Inverse lengths of the 4-vectors (a zero vector cannot be separated from the origin: no
+  // certificate).
+  std::vector<double> inverse_norm(n);
+  std::array<double, 4> d{0, 0, 0, 0};
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* e = c + 4 * i;
+    const double norm = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3]);
+    if (!(norm > 0)) return RankCertificate::None;
+    inverse_norm[i] = 1 / norm;
+    for (std::size_t k = 0; k < 4; ++k) d[k] += e[k] * inverse_norm[i];
+  }
+  // The certificate is checked on the unnormalised coefficients: d . c_i > sum |d_k| margin_k
+  // keeps d . c > 0 for every perturbation of c within the margins. The perceptron steps use
+  // the normalised vectors, so that no coefficient dominates by its size.
+  constexpr int kPerceptronSteps = 8;
+  for (int step = 0; step <= kPerceptronSteps; ++step) {
+    double slack = 0;
+    for (std::size_t k = 0; k < 4; ++k) slack += std::abs(d[k]) * margins[k];
+    bool all = true;
+    double lowest = std::numeric_limits<double>::infinity();
+    std::size_t worst = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* e = c + 4 * i;
+      const double dot = d[0] * e[0] + d[1] * e[1] + d[2] * e[2] + d[3] * e[3];
+      all = all && dot > slack;
+      if (dot * inverse_norm[i] < lowest) {
+        lowest = dot * inverse_norm[i];
+        worst = i;
+      }
+    }
+    if (all) return RankCertificate::Hull;
+    // Perceptron step: the unit direction moved towards the worst-separated unit vector.
+    double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + d[3] * d[3]);
+    if (!(norm > 0)) norm = 1;
+    for (std::size_t k = 0; k < 4; ++k) d[k] = d[k] / norm + c[4 * worst + k] * inverse_norm[worst];
+  }
+  return RankCertificate::None;
+}
+
+RankCertificate cone_rank_certificate(const BernsteinTensor<4>& geometry, const std::array<double, 4>& lengths) {
+  if (geometry.components != 3) throw InvalidInput("cone_rank_certificate needs a map into R^3 (three components)");
+  std::array<std::vector<Eigen::Vector3d>, 4> partials;
+  for (int d = 0; d < 4; ++d) {
+    const BernsteinTensor<4> derivative = bernstein_derivative(geometry, d, lengths[static_cast<std::size_t>(d)]);
+    auto& vectors = partials[static_cast<std::size_t>(d)];
+    vectors.reserve(derivative.count());
+    for (std::size_t i = 0; i < derivative.count(); ++i) {
+      vectors.emplace_back(derivative.coefficients[3 * i], derivative.coefficients[3 * i + 1], derivative.coefficients[3 * i + 2]);
+    }
+  }
+  constexpr std::array<std::array<std::size_t, 3>, 4> kTriples{{{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}}};
+  for (const auto& triple : kTriples) {
+    const auto [lo, hi] = cone_jacobian_bound(partials[triple[0]], partials[triple[1]], partials[triple[2]]);
+    if (lo > 0 || hi < 0) return RankCertificate::Cone;
+  }
+  return RankCertificate::None;
+}
+
+}  // namespace volspline

@@ -1,0 +1,106 @@
+#include "volspline/analysis/sub_jacobians.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "support/test_splines.h"
+#include "support/translated_generators.h"
+#include "volspline/core/error.h"
+#include "volspline/spline/bezier_extraction.h"
+
+namespace volspline {
+namespace {
+
+std::array<double, 4> local(const BSplineHypervolume& cell, const std::array<double, 4>& t) {
+  std::array<double, 4> s{};
+  for (int d = 0; d < 4; ++d) {
+    s[static_cast<std::size_t>(d)] = (t[static_cast<std::size_t>(d)] - cell.domain_min(d)) / (cell.domain_max(d) - cell.domain_min(d));
+  }
+  return s;
+}
+
+// The Bernstein polynomials of the four, evaluated, against the determinants of the evaluated
+// partials (for a rational map: numerators over w^4), on pieces of random B-splines.
+void expect_coefficients_reproduce_determinants(bool rational) {
+  std::mt19937 rng(rational ? 23 : 17);
+  for (int trial = 0; trial < 3; ++trial) {
+    const auto map = test_support::random_spline<4>(rng, {1 + trial % 2, 2, 1 + (trial + 1) % 2, 1 + trial % 2}, 2, 3, rational);
+    const auto pieces = bezier_pieces(map);
+    for (std::size_t p = 0; p < pieces.size(); p += 5) {
+      const auto& cell = pieces[p];
+      const SubJacobiansBernstein j = sub_jacobian_coefficients(cell);
+      EXPECT_EQ(j.homogeneous, rational);
+      BernsteinTensor<4> weight;
+      if (rational) {
+        BernsteinTensor<4> h;
+        h.degrees = cell.degrees();
+        h.components = 4;
+        h.coefficients = cell.homogeneous();
+        weight = bernstein_components(h, 3);
+      }
+      const double scale = bernstein_max_abs(j.minors);
+      for (int sample = 0; sample < 4; ++sample) {
+        const auto t = test_support::random_parameter(rng, cell);
+        const auto expected = sub_jacobians_at(map, t);
+        double values[4];
+        bernstein_evaluate(j.minors, local(cell, t), values);
+        const double w4 = rational ? std::pow(bernstein_evaluate(weight, local(cell, t)), 4) : 1.0;
+        for (int k = 0; k < 4; ++k) {
+          EXPECT_NEAR(values[k], expected[static_cast<std::size_t>(k)] * w4, 1e-12 * scale) << "minor " << k;
+        }
+      }
+    }
+  }
+}
+
+TEST(SubJacobians, PolynomialCoefficientsReproduceTheDeterminantsOfThePartials) {
+  expect_coefficients_reproduce_determinants(false);
+}
+
+TEST(SubJacobians, RationalNumeratorsReproduceTheDeterminantsOfThePartials) {
+  expect_coefficients_reproduce_determinants(true);
+}
+
+TEST(SubJacobians, TheFourShareOneCommonDegree) {
+  // Degree (p, q, r, m) = (1, 2, 2, 1): J234 has degree 3p in u, J123 degree 3m in t.
+  const auto map = test_support::translated_generator({{1.0, 0, 0, 2}, {1.0, 1, 2, 0}}, {1, 2, 2}, {1, 1, 0.5});
+  const auto j = sub_jacobian_coefficients(map);
+  EXPECT_EQ(j.minors.degrees, (std::array<int, 4>{3, 6, 6, 3}));
+  EXPECT_EQ(j.minors.components, 4);
+}
+
+TEST(SubJacobians, SignCertificateForAStrictSignAndHullForASeparatedSet) {
+  BernsteinTensor<4> minors({1, 0, 0, 0}, 4);
+  // J123 and J124 both change sign, but J123 + J124 > 0 on both coefficient vectors.
+  minors.coefficients = {1.0, -0.5, 0, 0, -0.5, 1.0, 0, 0};
+  EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::Hull);
+  minors.coefficients = {1.0, 0.5, 0, 0, 0.5, -1.0, 0, 0};
+  EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::Sign);
+  // The origin between two coefficient vectors: no certificate can exist.
+  minors.coefficients = {1.0, 0.5, 0, 0, -1.0, -0.5, 0, 0};
+  EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::None);
+  // A coefficient inside the margin is not a sign.
+  minors.coefficients = {1.0, 0, 0, 0, 1e-13, 0, 0, 0};
+  EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::None);
+}
+
+TEST(SubJacobians, ConeCertificateProvesAnUnfoldedGenerator) {
+  const auto map = test_support::translated_generator({{1.0, 0, 0, 1}, {0.2, 1, 1, 0}}, {1, 1, 1}, {0.3, 0.2, 1.0});
+  BernsteinTensor<4> geometry;
+  geometry.degrees = map.degrees();
+  geometry.components = 3;
+  geometry.coefficients = map.homogeneous();
+  EXPECT_EQ(cone_rank_certificate(geometry, {1, 1, 1, 1}), RankCertificate::Cone);
+}
+
+TEST(SubJacobians, RejectsMapsNotIntoThreeSpace) {
+  std::mt19937 rng(5);
+  const auto map = test_support::random_spline<4>(rng, {1, 1, 1, 1}, 1, 2, false);
+  EXPECT_THROW(sub_jacobian_coefficients(map), InvalidInput);
+  const auto spline = test_support::random_spline<4>(rng, {1, 1, 1, 1}, 2, 3, false);
+  EXPECT_THROW(sub_jacobian_coefficients(spline), InvalidInput);
+}
+
+}  // namespace
+}  // namespace volspline
