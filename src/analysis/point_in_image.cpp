@@ -27,6 +27,7 @@ constexpr double kNewtonShrink = 0.25;
 // a safeguard against maps with very many overlapping pieces near x).
 constexpr int kMaxCellsPerQuery = 1 << 20;
 constexpr int kLeafCells = 4;
+constexpr int kRememberedMinima = 8;
 
 template <int D>
 bool has_zero_weight(const TensorSpline<D>& s) {
@@ -94,6 +95,49 @@ int longest_direction(const BernsteinTensor<D>& f, const std::vector<double>& po
   return best;
 }
 
+// With a plane through x that should separate x from the cell (normal n, from Newton's closest
+// point), the cell survives the plane test while some control point is above it. For the
+// polynomial g = sum w_a (n . (P_a - x)) B_a (the height times the denominator: its sign is that
+// of n . (s - x)) the largest coefficient exceeds the largest value by at most
+// sum_d floor(n_d / 2) ceil(n_d / 2) / (2 n_d) max |second difference along d| (the control
+// polygon's distance from the curve, one direction at a time). When that bound says the cell is
+// in fact below the plane, the direction with the largest such term is split: splitting a
+// direction in which g is linear (a sweep's t, a ball's radius) never lowers the largest
+// coefficient. Otherwise -1: the cell crosses the plane and must shrink (longest_direction).
+template <int D>
+int curved_direction(const BernsteinTensor<D>& f, const std::vector<double>& points, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
+                     std::vector<double>& heights) {
+  const std::size_t count = f.count();
+  heights.resize(count);
+  double highest = -kInfinity;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double* p = points.data() + 3 * i;
+    const double weight = f.components == 4 ? f.coefficients[4 * i + 3] : 1.0;
+    heights[i] = weight * (n.x() * (p[0] - x.x()) + n.y() * (p[1] - x.y()) + n.z() * (p[2] - x.z()));
+    highest = std::max(highest, heights[i]);
+  }
+  int best = -1;
+  double largest = 0, overshoot = 0;
+  for (int d = 0; d < D; ++d) {
+    const int degree = f.degrees[static_cast<std::size_t>(d)];
+    if (degree < 2) continue;
+    const std::size_t step = f.stride(d), size = static_cast<std::size_t>(degree + 1);
+    double second = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t position = (i / step) % size;
+      if (position == 0 || position == size - 1) continue;
+      second = std::max(second, std::abs(heights[i - step] - 2 * heights[i] + heights[i + step]));
+    }
+    const double term = (degree / 2) * ((degree + 1) / 2) / (2.0 * degree) * second;
+    overshoot += term;
+    if (term > largest) {
+      largest = term;
+      best = d;
+    }
+  }
+  return highest - overshoot < 0 ? best : -1;
+}
+
 // The control point nearest x, and its Greville point in the cell's parameter box: where Newton
 // starts (the control net approximates the map there to O(h^2)).
 template <int D>
@@ -127,7 +171,7 @@ struct SplineImage<D>::Search {
   std::vector<Cell> stack;
   std::vector<double> newton_box;  // per stack slot: the box diagonal of the last Newton start above it
   Cell current;
-  std::vector<double> points;
+  std::vector<double> points, heights;
   std::vector<std::pair<double, int>> candidates;
 };
 
@@ -342,6 +386,10 @@ void SplineImage<D>::search(const Eigen::Vector3d& x, Query& result) const {
   bool has_normal = false;
   double undecided = kInfinity;
   bool gave_up = false;
+  // Where earlier Newton runs ended without converging (local minima of |s - x|): a start in a
+  // cell holding one would most likely end there again.
+  std::array<Preimage, kRememberedMinima> minima{};
+  int minima_count = 0;
   while (top > 0) {
     --top;
     std::swap(s.current, s.stack[top]);
@@ -357,8 +405,24 @@ void SplineImage<D>::search(const Eigen::Vector3d& x, Query& result) const {
     if (!box_encloses(cell.box, cell.margin, x)) continue;
     if (has_normal && below_plane_excludes(s.points, cell.margin, x, normal)) continue;
     const double diagonal = cell.box.diagonal().norm() + 2 * cell.margin;
-    const std::array<double, D> start = nearest_control_parameter<D>(cell.coefficients, s.points, cell.low, cell.high, x).first;
-    if (diagonal <= kNewtonShrink * newton_box) {
+    const auto [start, nearest] = nearest_control_parameter<D>(cell.coefficients, s.points, cell.low, cell.high, x);
+    auto holds_a_minimum = [&] {
+      for (int m = 0; m < std::min(minima_count, kRememberedMinima); ++m) {
+        const Preimage& p = minima[static_cast<std::size_t>(m)];
+        if (p.patch != cell.patch) continue;
+        bool inside = true;
+        for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
+          const double extent = cell.high[d] - cell.low[d];
+          inside = inside && p.parameter[d] >= cell.low[d] - extent && p.parameter[d] <= cell.high[d] + extent;
+        }
+        if (inside) return true;
+      }
+      return false;
+    };
+    // Newton again only from a control point nearer x than half the best residual so far (for
+    // x outside the image none comes nearer than the closest point Newton found already) and
+    // not within a cell's width of where an earlier run ended.
+    if (diagonal <= kNewtonShrink * newton_box && nearest < 0.5 * best_residual && !holds_a_minimum()) {
       const detail::DomainNewtonResult<D> newton = detail::newton_in_domain<D>(patches_[cell.patch], x, start, tolerance_);
       ++result.newton_runs;
       newton_box = diagonal;
@@ -368,6 +432,7 @@ void SplineImage<D>::search(const Eigen::Vector3d& x, Query& result) const {
         result.residual = newton.residual;
         return;
       }
+      minima[static_cast<std::size_t>(minima_count++ % kRememberedMinima)] = Preimage{cell.patch, newton.parameter};
       if (newton.residual < best_residual) {
         // The residual of a local minimum of |s(p) - x| points from the image towards x: the
         // plane through x normal to it leaves the image's nearby part below.
@@ -381,7 +446,8 @@ void SplineImage<D>::search(const Eigen::Vector3d& x, Query& result) const {
       undecided = std::min(undecided, diagonal);
       continue;
     }
-    const int direction = longest_direction(cell.coefficients, s.points);
+    int direction = has_normal ? curved_direction(cell.coefficients, s.points, x, normal, s.heights) : -1;
+    if (direction < 0) direction = longest_direction(cell.coefficients, s.points);
     reserve(top + 2);
     Cell& lower = s.stack[top];
     Cell& upper = s.stack[top + 1];
