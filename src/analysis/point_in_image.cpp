@@ -23,9 +23,6 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // in each direction, so a start close enough for convergence is reached soon after the cells
 // get small, and failing tries (x outside) cost little next to the splitting.
 constexpr double kNewtonShrink = 0.25;
-// Cells a single query may test before it gives up with Undecided (never reached in the tests;
-// a safeguard against maps with very many overlapping pieces near x).
-constexpr int kMaxCellsPerQuery = 1 << 20;
 constexpr int kLeafCells = 4;
 constexpr int kRememberedMinima = 8;
 
@@ -184,7 +181,9 @@ SplineImage<D>::SplineImage(std::vector<TensorSpline<D>> patches, PointInImageOp
   if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) {
     throw InvalidInput("tolerance must be positive and finite", "tolerance");
   }
+  if (options.max_cells < 1) throw InvalidInput("max_cells must be at least 1, got " + std::to_string(options.max_cells), "max_cells");
   max_depth_ = options.max_depth == 0 ? 26 * D : options.max_depth;
+  max_cells_ = options.max_cells;
 
   std::vector<Cell> roots;
   std::vector<double> points;
@@ -395,7 +394,7 @@ void SplineImage<D>::search(const Eigen::Vector3d& x, Query& result) const {
     std::swap(s.current, s.stack[top]);
     double newton_box = s.newton_box[top];
     Cell& cell = s.current;
-    if (result.cells_tested >= kMaxCellsPerQuery) {
+    if (result.cells_tested >= max_cells_) {
       gave_up = true;
       break;
     }

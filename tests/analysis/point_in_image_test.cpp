@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "volspline/construct/primitives.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/affine_map.h"
@@ -347,6 +349,9 @@ TEST(PointInImage, RejectsWhatItCannotBound) {
   PointInImageOptions zero_tolerance;
   zero_tolerance.tolerance = 0;
   EXPECT_THROW(SplineImage<3>({cube}, zero_tolerance), InvalidInput);
+  PointInImageOptions no_cells;
+  no_cells.max_cells = 0;
+  EXPECT_THROW(SplineImage<3>({cube}, no_cells), InvalidInput);
   const BSplineVolume planar({KnotVector(1, {0, 0, 1, 1}), KnotVector(1, {0, 0, 1, 1}), KnotVector(1, {0, 0, 1, 1})}, 2,
                              std::vector<double>(16, 0.0));
   EXPECT_THROW(SplineImage<3>({planar}), InvalidInput);
@@ -362,6 +367,43 @@ TEST(PointInImage, MemoryOfThePrecomputedCellsIsBounded) {
   EXPECT_LE(image.precomputed_cells() * cell_bytes, small.precomputed_bytes + cell_bytes);
   EXPECT_EQ(image.classify(Eigen::Vector3d(1, 0, 0)), ImageMembership::Inside);
   EXPECT_EQ(image.classify(Eigen::Vector3d(1, 0, 1 + 1e-6)), ImageMembership::Outside);
+}
+
+
+TEST(PointInImage, UndecidedOnlyWithinItsDistanceBoundOfTheImage) {
+  // A tolerance below the distance and a shallow depth limit: points 1e-10 of the radius
+  // outside the ball are never Inside; where the depth runs out, the bound reported is at least
+  // the true distance (it bounds the distance from x to the image).
+  PointInImageOptions shallow;
+  shallow.tolerance = 1e-15;
+  shallow.max_depth = 15;
+  const double radius = 1;
+  const SplineImage<3> image({ball(radius)}, shallow);
+  std::mt19937 rng(19);
+  int undecided = 0;
+  for (int i = 0; i < 40; ++i) {
+    const double distance = 1e-10 * radius;
+    const Eigen::Vector3d x = (radius + distance) * random_direction(rng);
+    const auto q = image.query(x);
+    ASSERT_NE(q.membership, ImageMembership::Inside);
+    if (q.membership == ImageMembership::Undecided) {
+      ++undecided;
+      EXPECT_GE(q.distance_bound, distance * (1 - 1e-4));
+      EXPECT_LE(q.distance_bound, 1e-2 * image.size());
+    }
+  }
+  std::printf("[ 1e-10 outside with max_depth 15: %d of 40 undecided ]\n", undecided);
+}
+
+TEST(PointInImage, ParallelQueriesAgreeWithSerialOnes) {
+  const SplineImage<4> image({translated_along(ball(0.6), Eigen::Vector3d(1.2, -0.7, 0.9))});
+  std::mt19937 rng(20);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 200; ++i) points.push_back(Eigen::Vector3d(0.6, -0.35, 0.45) + 1.2 * random_direction(rng) * std::cbrt(i / 200.0));
+  std::vector<ImageMembership> serial, parallel(points.size());
+  for (const auto& x : points) serial.push_back(image.classify(x));
+  tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) { parallel[i] = image.classify(points[i]); });
+  EXPECT_EQ(serial, parallel);
 }
 
 }  // namespace

@@ -44,6 +44,10 @@ struct PointInImageOptions {
   /// |s(p) - x| accepted for Inside, relative to the size of the model (the diagonal of the box
   /// of all control points).
   double tolerance = 1e-12;
+  /// Cells one query may test before it gives up with Undecided: a point within about 1e-10 of
+  /// the size outside a curved boundary can otherwise need exponentially many cells at the
+  /// depth limit (a cell costs about a microsecond).
+  int max_cells = 1 << 14;
   /// Memory for the cells split at construction (their Bernstein coefficients), so that queries
   /// start from small cells; every Bézier piece is at least one cell whatever this says.
   std::size_t precomputed_bytes = std::size_t{4} << 20;
@@ -86,7 +90,8 @@ class SplineImage {
   /// degree-elevated until every weight is positive, so that the Euclidean control points bound
   /// the piece.
   /// \throw InvalidInput if there are no patches, a patch does not map into R^3, an option is
-  /// out of range (max_depth < 0 or > 60 D, tolerance not positive and finite), or a weight
+  /// out of range (max_depth < 0 or > 60 D, tolerance not positive and finite, max_cells < 1),
+  /// or a weight
   /// stays zero after elevation.
   explicit SplineImage(std::vector<TensorSpline<D>> patches, PointInImageOptions options = {});
 
@@ -135,6 +140,7 @@ class SplineImage {
 
   std::vector<TensorSpline<D>> patches_;
   int max_depth_ = 0;
+  int max_cells_ = 0;
   double size_ = 1;
   double tolerance_ = 0;
   Eigen::AlignedBox3d bounds_;
