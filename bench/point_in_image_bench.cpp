@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "support/swept_solids.h"
 #include "volspline/analysis/point_in_image.h"
 #include "volspline/construct/primitives.h"
 
@@ -17,16 +18,7 @@ namespace {
 
 using namespace volspline;
 
-BSplineHypervolume translated_along(const BSplineVolume& g, const Eigen::Vector3d& offset) {
-  std::vector<double> points = g.points();
-  const std::size_t n = points.size();
-  points.resize(2 * n);
-  for (std::size_t i = 0; i < n; ++i) points[n + i] = points[i] + offset[static_cast<Eigen::Index>(i % 3)];
-  std::vector<double> weights = g.weights();
-  weights.insert(weights.end(), g.weights().begin(), g.weights().end());
-  return BSplineHypervolume({g.knot_vector(0), g.knot_vector(1), g.knot_vector(2), KnotVector(1, {0, 0, 1, 1})}, 3,
-                            std::move(points), std::move(weights));
-}
+using test_support::translated_along;
 
 struct Model {
   SplineImage<4> image;

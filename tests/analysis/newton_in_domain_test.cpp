@@ -4,24 +4,15 @@
 
 #include <random>
 
+#include "support/swept_solids.h"
 #include "volspline/construct/primitives.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
 namespace {
 
-// The ball of radius 0.6 at the origin translated along `offset` (degree 1 in t): a capsule.
-BSplineHypervolume capsule_map(const Eigen::Vector3d& offset) {
-  const BSplineVolume g = ball(0.6);
-  std::vector<double> points = g.points();
-  const std::size_t n = points.size();
-  points.resize(2 * n);
-  for (std::size_t i = 0; i < n; ++i) points[n + i] = points[i] + offset[static_cast<Eigen::Index>(i % 3)];
-  std::vector<double> weights = g.weights();
-  weights.insert(weights.end(), g.weights().begin(), g.weights().end());
-  return BSplineHypervolume({g.knot_vector(0), g.knot_vector(1), g.knot_vector(2), KnotVector(1, {0, 0, 1, 1})}, 3,
-                            std::move(points), std::move(weights));
-}
+// The ball of radius 0.6 at the origin translated along `offset`: a capsule.
+BSplineHypervolume capsule_map(const Eigen::Vector3d& offset) { return test_support::translated_along(ball(0.6), offset); }
 
 TEST(NewtonInDomain, MinimumNormStepsSolveTheUnderdeterminedSweep) {
   const Eigen::Vector3d offset(1.2, -0.7, 0.9);

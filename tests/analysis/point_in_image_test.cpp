@@ -11,6 +11,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "support/swept_solids.h"
 #include "volspline/construct/primitives.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/affine_map.h"
@@ -22,21 +23,7 @@ namespace {
 
 using Predicate = std::function<bool(const Eigen::Vector3d&)>;
 
-// s(u, v, w, t) = g(u, v, w) + t * offset, degree 1 in t: the solid g translated along a
-// segment (Conkey–Joy's sweep with a pure translation), whose swept volume is g's image
-// Minkowski-added to the segment. Rational g stays rational with the same weights.
-BSplineHypervolume translated_along(const BSplineVolume& g, const Eigen::Vector3d& offset) {
-  std::vector<double> points = g.points();
-  const std::size_t n = points.size();
-  points.resize(2 * n);
-  for (std::size_t i = 0; i < n; i += 3) {
-    for (std::size_t c = 0; c < 3; ++c) points[n + i + c] = points[i + c] + offset[static_cast<Eigen::Index>(c)];
-  }
-  std::vector<double> weights = g.weights();
-  weights.insert(weights.end(), g.weights().begin(), g.weights().end());
-  return BSplineHypervolume({g.knot_vector(0), g.knot_vector(1), g.knot_vector(2), KnotVector(1, {0, 0, 1, 1})}, 3,
-                            std::move(points), std::move(weights));
-}
+using test_support::translated_along;
 
 // The unit cube [0, 1]^3 as a degree (2, 2, 2) B-spline with interior knots at 1/3 and 1/2:
 // several Bézier pieces, so that queries meet knot planes.
