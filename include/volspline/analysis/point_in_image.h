@@ -30,9 +30,11 @@ enum class ImageMembership {
   /// Some p in the closed domain has |s(p) - x| <= the tolerance (points on the boundary of the
   /// image are Inside).
   Inside,
-  /// Certified: no control net of any cell encloses x, so no s(p) equals x.
+  /// Certified: the control points of every cell were separated from x (by their box or by a
+  /// plane through x), so by the convex hull property no s(p) equals x.
   Outside,
-  /// Neither, down to the depth limit: x is within a tiny distance of the image.
+  /// Neither, down to the depth limit (or within max_cells): x is within a tiny distance of
+  /// the image (Query::distance_bound).
   Undecided,
 };
 
@@ -91,8 +93,7 @@ class SplineImage {
   /// the piece.
   /// \throw InvalidInput if there are no patches, a patch does not map into R^3, an option is
   /// out of range (max_depth < 0 or > 60 D, tolerance not positive and finite, max_cells < 1),
-  /// or a weight
-  /// stays zero after elevation.
+  /// or a weight stays zero after elevation.
   explicit SplineImage(std::vector<TensorSpline<D>> patches, PointInImageOptions options = {});
 
   /// Inside, Outside (certified) or Undecided. \throw InvalidInput if x is not finite.
