@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "support/swept_solids.h"
+#include "support/test_splines.h"
 #include "volspline/construct/primitives.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/affine_map.h"
@@ -391,6 +392,30 @@ TEST(PointInImage, ParallelQueriesAgreeWithSerialOnes) {
   for (const auto& x : points) serial.push_back(image.classify(x));
   tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) { parallel[i] = image.classify(points[i]); });
   EXPECT_EQ(serial, parallel);
+}
+
+
+template <int D>
+void expect_image_points_never_outside(std::uint32_t seed, std::array<int, D> degrees, bool rational) {
+  // Random B-splines fold over themselves everywhere; a point s(p) is in the image, so the
+  // certificate must never call it Outside, and Newton should find a preimage.
+  std::mt19937 rng(seed);
+  const TensorSpline<D> s = test_support::random_spline<D>(rng, degrees, 2, 3, rational);
+  const SplineImage<D> image({s});
+  int inside = 0;
+  for (int i = 0; i < 60; ++i) {
+    const Eigen::Vector3d x = s.evaluate(test_support::random_parameter(rng, s));
+    const auto q = image.query(x);
+    ASSERT_NE(q.membership, ImageMembership::Outside) << x.transpose();
+    inside += q.membership == ImageMembership::Inside;
+  }
+  EXPECT_EQ(inside, 60);
+}
+
+TEST(PointInImage, ImagePointsOfRandomFoldedSplinesAreNeverOutside) {
+  expect_image_points_never_outside<3>(21, {2, 3, 2}, false);
+  expect_image_points_never_outside<3>(22, {3, 2, 2}, true);
+  expect_image_points_never_outside<4>(23, {2, 2, 1, 2}, true);
 }
 
 }  // namespace
