@@ -176,6 +176,14 @@ DomainNewtonResult<D> newton_in_domain(const TensorSpline<D>& s, const Eigen::Ve
     if (!damped_step<D>(hessian, descent, free, 1e-12, step) || !try_step(step, moved)) break;
   }
   best.converged = best.residual <= tolerance;
+  const Eigen::Vector3d r = x - jet.value;
+  const Eigen::Matrix<double, D, 1> descent = jet.jacobian.transpose() * r;
+  const std::array<bool, D> free = free_coordinates<D>(best.parameter, low, high, descent);
+  double projected = 0;
+  for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
+    if (free[d]) projected += descent(static_cast<Eigen::Index>(d)) * descent(static_cast<Eigen::Index>(d));
+  }
+  best.stationary = best.converged || std::sqrt(projected) <= 1e-6 * jet.jacobian.norm() * r.norm();
   return best;
 }
 

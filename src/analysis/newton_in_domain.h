@@ -22,6 +22,10 @@ struct DomainNewtonResult {
   Eigen::Vector3d value = Eigen::Vector3d::Zero();
   double residual = 0;
   bool converged = false;
+  /// The end point is a first-order minimum over the domain: the free part of J^T r is below
+  /// 1e-6 of |J| |r|. False for a stall where |s - x| has a kink (a C0 knot) or the budget ran
+  /// out; its residual direction is then no normal of the image.
+  bool stationary = false;
 };
 
 /// From `start` (clamped into the domain), at most `max_evaluations` evaluations of s and its

@@ -381,7 +381,7 @@ void SplineImage<D>::search(const Eigen::Vector3d& x, Query& result) const {
     ++top;
   }
 
-  double best_residual = kInfinity;
+  double best_residual = kInfinity, best_minimum = kInfinity;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   bool has_normal = false;
   double undecided = kInfinity;
@@ -419,10 +419,11 @@ void SplineImage<D>::search(const Eigen::Vector3d& x, Query& result) const {
       }
       return false;
     };
-    // Newton again only from a control point nearer x than half the best residual so far (for
-    // x outside the image none comes nearer than the closest point Newton found already) and
-    // not within a cell's width of where an earlier run ended.
-    if (diagonal <= kNewtonShrink * newton_box && nearest < 0.5 * best_residual && !holds_a_minimum()) {
+    // Newton again only from a control point nearer x than half the best minimum so far (for
+    // x outside the image none comes nearer than the closest point Newton found already; a
+    // stall at a kink does not count) and not within a cell's width of where an earlier run
+    // ended.
+    if (diagonal <= kNewtonShrink * newton_box && nearest < 0.5 * best_minimum && !holds_a_minimum()) {
       const detail::DomainNewtonResult<D> newton = detail::newton_in_domain<D>(patches_[cell.patch], x, start, tolerance_);
       ++result.newton_runs;
       newton_box = diagonal;
@@ -436,6 +437,7 @@ void SplineImage<D>::search(const Eigen::Vector3d& x, Query& result) const {
       if (newton.residual < best_residual) {
         // The residual of a local minimum of |s(p) - x| points from the image towards x: the
         // plane through x normal to it leaves the image's nearby part below.
+        if (newton.stationary) best_minimum = newton.residual;
         best_residual = newton.residual;
         normal = (x - newton.value) / newton.residual;
         has_normal = true;
