@@ -186,9 +186,15 @@ double bernstein_evaluate(const BernsteinTensor<D>& f, const BernsteinPoint<D>& 
 }
 
 template <int D>
-std::pair<BernsteinTensor<D>, BernsteinTensor<D>> bernstein_split(const BernsteinTensor<D>& f, int direction, double t) {
+void bernstein_split(const BernsteinTensor<D>& f, int direction, double t, BernsteinTensor<D>& left, BernsteinTensor<D>& right) {
   check_direction(direction, D);
-  BernsteinTensor<D> left = f, right = f;
+  if (&left == &f || &right == &f || &left == &right) throw InvalidInput("bernstein_split needs two outputs distinct from its input");
+  // Every coefficient of both halves is written below, so only the sizes are set here.
+  for (BernsteinTensor<D>* half : {&left, &right}) {
+    half->degrees = f.degrees;
+    half->components = f.components;
+    half->coefficients.resize(f.coefficients.size());
+  }
   const int len = f.size(direction);
   const std::size_t c = static_cast<std::size_t>(f.components);
   const std::size_t stride = f.stride(direction) * c;
@@ -215,7 +221,13 @@ std::pair<BernsteinTensor<D>, BernsteinTensor<D>> bernstein_split(const Bernstei
       }
     }
   });
-  return {std::move(left), std::move(right)};
+}
+
+template <int D>
+std::pair<BernsteinTensor<D>, BernsteinTensor<D>> bernstein_split(const BernsteinTensor<D>& f, int direction, double t) {
+  std::pair<BernsteinTensor<D>, BernsteinTensor<D>> halves;
+  bernstein_split(f, direction, t, halves.first, halves.second);
+  return halves;
 }
 
 template <int D>
@@ -429,6 +441,7 @@ void bernstein_blossom(const BernsteinTensor<1>& f, const double* arguments, dou
   template double bernstein_evaluate(const BernsteinTensor<D>&, const BernsteinPoint<D>&);                      \
   template void bernstein_evaluate(const BernsteinTensor<D>&, const BernsteinPoint<D>&, double*);              \
   template std::pair<BernsteinTensor<D>, BernsteinTensor<D>> bernstein_split(const BernsteinTensor<D>&, int, double); \
+  template void bernstein_split(const BernsteinTensor<D>&, int, double, BernsteinTensor<D>&, BernsteinTensor<D>&); \
   template std::pair<double, double> bernstein_coefficient_range(const BernsteinTensor<D>&, int);                   \
   template double bernstein_max_abs(const BernsteinTensor<D>&);                                                     \
   template BernsteinTensor<D> bernstein_derivative(const BernsteinTensor<D>&, int, double);                         \

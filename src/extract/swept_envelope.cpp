@@ -10,6 +10,7 @@
 #include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/core/error.h"
 #include "volspline/extract/face_tessellation.h"
+#include "volspline/extract/rank_deficient_surface.h"
 #include "volspline/spline/iso_restriction.h"
 
 namespace volspline {
@@ -149,8 +150,11 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
   // The folds of the eight 3-faces (Joy–Duchaineau's implicit surface of each trivariate solid).
   const auto folds_start = Clock::now();
   BoundaryOptions zero;
-  zero.tolerance = options.tolerance;
+  // The zero surfaces' flatness tolerance is on J relative to its scale; linear interpolation in
+  // cells that flat places vertices within about tolerance of the surface.
+  zero.tolerance = std::min(0.05, 10 * options.tolerance);
   zero.max_cells = options.max_cells;
+  zero.bounds = options.bounds;
   zero.snap = true;
   for (int c = 0; c < 4; ++c)
     for (int end = 0; end < 2; ++end) {
@@ -178,6 +182,28 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
       (c == 3 ? stats.cap_fold_triangles : stats.face_sweep_fold_triangles) += static_cast<std::int64_t>(z.mesh.num_triangles());
     }
   stats.seconds_folds += seconds_since(folds_start);
+
+  // The rank-deficient set inside the 4-cube (§5–6). Marching is linear on cells of 2^-L of a
+  // Bézier piece, so its error is about (2^-L)^2 of the piece's size: L from sqrt(tolerance).
+  const auto rank_start = Clock::now();
+  RankDeficientOptions rank;
+  rank.bounds = options.bounds;
+  rank.tolerance = std::min(0.25, std::sqrt(options.tolerance));
+  rank.max_cells = options.max_cells;
+  rank.progress = options.progress;
+  const RankDeficientSurface r = rank_deficient_surface(s, rank);
+  stats.rank_cells_examined += r.stats.cells_examined;
+  stats.rank_cells_kept += r.stats.cells_kept;
+  if (r.stats.budget_exhausted) stats.budget_reached = true;
+  const int rbase = static_cast<int>(out.mesh.num_vertices());
+  for (std::size_t v = 0; v < r.mesh.num_vertices(); ++v) {
+    out.mesh.add_vertex(r.mesh.positions[v], r.mesh.parameters[v]);
+    out.times.push_back(r.t[v]);
+    out.patches.push_back(patch_index);
+  }
+  for (const auto& t : r.mesh.triangles) out.mesh.add_triangle(rbase + t[0], rbase + t[1], rbase + t[2], Part::SweepRankDeficient);
+  stats.rank_deficient_triangles += static_cast<std::int64_t>(r.mesh.num_triangles());
+  stats.seconds_rank_deficient += seconds_since(rank_start);
 }
 
 void check_patches(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {

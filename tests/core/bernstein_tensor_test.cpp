@@ -94,6 +94,27 @@ TEST(BernsteinTensor, SplitPiecesReproduceThePolynomial) {
   }
 }
 
+TEST(BernsteinTensor, SplitIntoCallerTensorsReusesTheirStorage) {
+  // The same halves as the returning form, bit for bit, written into tensors of any earlier
+  // shape; once they are large enough no new storage is taken.
+  std::mt19937 rng(12);
+  const auto f = random_tensor<4>(rng, {2, 1, 3, 1}, 4);
+  BernsteinTensor<4> left = random_tensor<4>(rng, {3, 3, 3, 3}, 4), right = left;
+  const double* left_storage = left.coefficients.data();
+  const double* right_storage = right.coefficients.data();
+  for (int d = 0; d < 4; ++d) {
+    bernstein_split(f, d, 0.5, left, right);
+    const auto [expected_left, expected_right] = bernstein_split(f, d, 0.5);
+    EXPECT_EQ(left.degrees, expected_left.degrees);
+    EXPECT_EQ(left.components, 4);
+    EXPECT_EQ(left.coefficients, expected_left.coefficients);
+    EXPECT_EQ(right.coefficients, expected_right.coefficients);
+    EXPECT_EQ(left.coefficients.data(), left_storage);
+    EXPECT_EQ(right.coefficients.data(), right_storage);
+  }
+  EXPECT_THROW(bernstein_split(f, 0, 0.5, left, left), InvalidInput);
+}
+
 TEST(BernsteinTensor, ProductAndElevationAreExactIdentities) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> t(0, 1);

@@ -129,6 +129,12 @@ void bernstein_evaluate(const BernsteinTensor<D>& f, const BernsteinPoint<D>& s,
 /// \throw InvalidInput if direction is not in [0, D).
 template <int D>
 std::pair<BernsteinTensor<D>, BernsteinTensor<D>> bernstein_split(const BernsteinTensor<D>& f, int direction, double t = 0.5);
+/// The same, written into `left` and `right`, which are resized and whose storage is reused: a
+/// subdivision that splits into the same tensors again and again does not allocate.
+/// \throw InvalidInput if direction is not in [0, D) or the outputs are not two tensors distinct
+/// from f.
+template <int D>
+void bernstein_split(const BernsteinTensor<D>& f, int direction, double t, BernsteinTensor<D>& left, BernsteinTensor<D>& right);
 
 /// The restriction of f to the face s_direction = side (0 or 1), a polynomial in the other D - 1
 /// variables (in their order): the coefficients with a_direction = 0 or degree.

@@ -31,13 +31,13 @@
 
 namespace volspline {
 
-enum class SubJacobianBoundMethod { Bezier, Cone };
-
 struct SweptEnvelopeOptions {
   /// Relative to the diagonal of the control points' bounding box: the chord error the face
   /// tessellations aim at and the cell size of the implicit parts.
   double tolerance = 1e-3;
-  SubJacobianBoundMethod bounds = SubJacobianBoundMethod::Bezier;
+  /// Bernstein coefficients (certified) or the paper's cone bounds, for the 3-face zero surfaces
+  /// and the rank-deficient set alike.
+  JacobianBoundMethod bounds = JacobianBoundMethod::Bezier;
   /// Budget of cells examined by each adaptive subdivision (the 3-face zero surfaces and the
   /// 4-dimensional rank-deficient set); reached budgets are reported in the statistics.
   std::int64_t max_cells = 2000000;
