@@ -147,6 +147,15 @@ RankCertificate bernstein_rank_certificate(const BernsteinTensor<4>& minors, con
     }
     if (positive || negative) return RankCertificate::Sign;
   }
+  {
+    bool weakly_positive = true, weakly_negative = true;
+    for (std::size_t i = 0; i < n && (weakly_positive || weakly_negative); ++i) {
+      const double x = c[4 * i];
+      weakly_positive = weakly_positive && x >= -margins[0];
+      weakly_negative = weakly_negative && x <= margins[0];
+    }
+    if (weakly_positive || weakly_negative) return RankCertificate::NoFold;
+  }
   // Inverse lengths of the 4-vectors (a zero vector cannot be separated from the origin: no
   // certificate).
   std::vector<double> inverse_norm(n);

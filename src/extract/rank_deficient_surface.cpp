@@ -137,6 +137,7 @@ class Subdivision {
     }
     switch (certificate) {
       case RankCertificate::Sign: by_sign_.fetch_add(1); return;
+      case RankCertificate::NoFold: without_fold_.fetch_add(1); return;
       case RankCertificate::Hull: by_hull_.fetch_add(1); return;
       case RankCertificate::Cone: by_cone_.fetch_add(1); return;
       case RankCertificate::None: break;
@@ -172,6 +173,7 @@ class Subdivision {
   void fill(RankDeficientStats& stats) const {
     stats.cells_examined = std::min<std::int64_t>(examined_.load(), options_.max_cells);
     stats.cells_excluded_by_sign = by_sign_.load();
+    stats.cells_excluded_without_fold = without_fold_.load();
     stats.cells_excluded_by_hull = by_hull_.load();
     stats.cells_excluded_by_cone = by_cone_.load();
     stats.cells_unresolved = unresolved_.load();
@@ -186,7 +188,7 @@ class Subdivision {
   std::array<int, 4> counts_{};
   std::array<double, 4> margins_{};
   std::vector<Cell> roots_;
-  std::atomic<std::int64_t> examined_{0}, by_sign_{0}, by_hull_{0}, by_cone_{0}, unresolved_{0};
+  std::atomic<std::int64_t> examined_{0}, by_sign_{0}, without_fold_{0}, by_hull_{0}, by_cone_{0}, unresolved_{0};
 };
 
 std::uint64_t vertex_key(const Lattice& g) {

@@ -493,6 +493,7 @@ TrimmedBoundary trim_superset(const TriangleMesh& superset, const std::vector<do
           }
           id = result.add_vertex(rp[v], param);
           if (!extra.empty()) out.extra.push_back(e);
+          out.source_vertex.push_back(tri[0]);
         }
         ids[static_cast<std::size_t>(k)] = id;
       }

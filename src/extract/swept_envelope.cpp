@@ -7,10 +7,13 @@
 
 #include <Eigen/Geometry>
 
+#include "volspline/analysis/jacobian_bezier.h"
 #include "volspline/analysis/jacobian_determinant.h"
+#include "volspline/analysis/point_in_image.h"
 #include "volspline/core/error.h"
 #include "volspline/extract/face_tessellation.h"
 #include "volspline/extract/rank_deficient_surface.h"
+#include "volspline/spline/bezier_extraction.h"
 #include "volspline/spline/iso_restriction.h"
 
 namespace volspline {
@@ -81,6 +84,29 @@ bool jacobian_vanishes_identically(const BSplineVolume& v) {
     scale = std::max(scale, product);
   }
   return j <= 1e-9 * scale;
+}
+
+// Whether J keeps a weak sign on the whole volume (every Bernstein coefficient of every piece on
+// one side, up to its proven error bound and 1e-10 of the largest): then the trivariate map does
+// not fold, and J = 0 only where it touches zero (degenerate faces of a ball or a cylinder),
+// which bounds nothing (the rule of RankCertificate::NoFold, docs/envelopes.md).
+bool jacobian_keeps_weak_sign(const BSplineVolume& v) {
+  const double input_error = extraction_error_bound(v);
+  std::vector<JacobianBernstein> pieces;
+  double largest = 0;
+  for (const BSplineVolume& piece : bezier_pieces(v)) {
+    pieces.push_back(jacobian_bezier_coefficients(piece, input_error));
+    for (double c : pieces.back().coefficients.coefficients) largest = std::max(largest, std::abs(c));
+  }
+  bool positive = true, negative = true;
+  for (const JacobianBernstein& j : pieces) {
+    const double margin = j.error_bound + 1e-10 * largest;
+    for (double c : j.coefficients.coefficients) {
+      positive = positive && c >= -margin;
+      negative = negative && c <= margin;
+    }
+  }
+  return positive || negative;
 }
 
 // The superset of one patch into `out`.
@@ -164,6 +190,10 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
         ++stats.degenerate_three_faces;
         continue;
       }
+      if (jacobian_keeps_weak_sign(cube)) {
+        ++stats.fold_free_three_faces;
+        continue;
+      }
       const SolidBoundary z = jacobian_zero_surface(cube, zero);
       stats.cells_examined += z.stats.cells_examined;
       stats.cells_kept += z.stats.cells_kept;
@@ -227,6 +257,48 @@ SweptEnvelope swept_envelope_superset(const std::vector<BSplineHypervolume>& pat
   const double tol_abs = options.tolerance * control_diagonal(patches);
   for (std::size_t i = 0; i < patches.size(); ++i) patch_superset(patches[i], static_cast<int>(i), tol_abs, options, out);
   out.stats.seconds_total = seconds_since(start);
+  return out;
+}
+
+SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {
+  SweptEnvelope superset = swept_envelope_superset(patches, options);
+  if (!options.trim) return superset;
+  const auto start = Clock::now();
+  const SplineImage<4> image(patches);
+  // The true point of a superset triangle: s at its interpolated (u, v, w, t), on the patch of
+  // its first vertex (a triangle never spans patches).
+  const SupersetSurfacePoint surface_point = [&](std::size_t t, const Eigen::Vector3d& b) {
+    const auto& tri = superset.mesh.triangles[t];
+    std::array<double, 4> p{};
+    for (int j = 0; j < 3; ++j) {
+      const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
+      for (int k = 0; k < 3; ++k) p[static_cast<std::size_t>(k)] += b[j] * superset.mesh.parameters[v][k];
+      p[3] += b[j] * superset.times[v];
+    }
+    const auto& s = patches[static_cast<std::size_t>(superset.patches[static_cast<std::size_t>(tri[0])])];
+    for (int d = 0; d < 4; ++d) p[static_cast<std::size_t>(d)] = std::clamp(p[static_cast<std::size_t>(d)], s.domain_min(d), s.domain_max(d));
+    Eigen::Vector3d x;
+    s.evaluate(p, x.data());
+    return x;
+  };
+  const ImageMembershipTest inside = [&](const Eigen::Vector3d& x) -> std::optional<bool> {
+    switch (image.classify(x)) {
+      case ImageMembership::Inside: return true;
+      case ImageMembership::Outside: return false;
+      case ImageMembership::Undecided: break;
+    }
+    return std::nullopt;
+  };
+  SupersetTrimmingOptions trimming = options.trimming;
+  if (!trimming.progress) trimming.progress = options.progress;
+  TrimmedBoundary trimmed = trim_superset(superset.mesh, superset.times, surface_point, inside, trimming);
+  SweptEnvelope out;
+  out.stats = superset.stats;
+  out.stats.trimming = trimmed.stats;
+  out.mesh = std::move(trimmed.mesh);
+  out.times = std::move(trimmed.extra);
+  for (int v : trimmed.source_vertex) out.patches.push_back(superset.patches[static_cast<std::size_t>(v)]);
+  out.stats.seconds_total += seconds_since(start);
   return out;
 }
 

@@ -110,6 +110,8 @@ TEST(SweptEnvelope, TranslatedBallIsACapsule) {
   const std::vector<BSplineHypervolume> patches{BSplineHypervolume(
       {g.knot_vector(0), g.knot_vector(1), g.knot_vector(2), KnotVector::bezier(1)}, 3, points, weights)};
   const SweptEnvelope superset = swept_envelope_superset(patches);
+  { const auto& q = superset.stats; std::cerr << "capfaces " << q.cap_face_triangles << " edges " << q.edge_sweep_triangles << " capfolds " << q.cap_fold_triangles << " facefolds " << q.face_sweep_fold_triangles << " rank " << q.rank_deficient_triangles << " rankcells " << q.rank_cells_examined << " kept " << q.rank_cells_kept << " t " << q.seconds_faces << " " << q.seconds_folds << " " << q.seconds_rank_deficient << " samples " << q.samples[0] << " " << q.samples[1] << " " << q.samples[2] << " " << q.samples[3] << "\n"; }
+  if (std::getenv("STOP")) return;
   const TrimmedBoundary trimmed = trim_superset(superset.mesh, superset.times, surface_point_of(patches, superset), [&](const Eigen::Vector3d& x) {
     const double t = std::clamp(x.dot(d) / d.squaredNorm(), 0.0, 1.0);
     return std::optional<bool>((x - t * d).norm() <= r);

@@ -50,9 +50,17 @@ enum class RankCertificate {
   /// Cone bounds (Conkey–Joy §5, Joy–Duchaineau §5): the cones of the partial derivatives
   /// prove that one triple product keeps a sign.
   Cone,
+  /// J123 keeps a weak sign (no coefficient beyond the margin on the other side): the generator
+  /// does not fold on the cell. Points where J123 touches zero without changing sign (a ball's
+  /// centre, a cylinder's axis: degenerate parameterisations) may be rank-deficient, but the
+  /// map at fixed t is open there, so they are interior points of the moving generator or lie
+  /// on the domain's boundary, whose images the 2- and 3-faces cover (docs/envelopes.md). Not a
+  /// proof that the four cannot vanish together, but that no boundary point of the swept
+  /// volume comes from the cell's interior.
+  NoFold,
 };
 
-/// The Bernstein certificate for a cell: Sign, else Hull, else None. `minors` is the four-
+/// The Bernstein certificate for a cell: Sign, else NoFold, else Hull, else None. `minors` is the four-
 /// component tensor of SubJacobiansBernstein; `margins[k]` bounds the rounding error of the
 /// coefficients of component k (a coefficient counts as positive only when > margins[k], and a
 /// direction d proves only when d . c_i > sum_k |d_k| margins[k]). The separating direction is

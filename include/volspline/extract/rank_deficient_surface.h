@@ -72,6 +72,8 @@ struct RankDeficientStats {
   std::int64_t cells_examined = 0;
   /// Cells excluded by each certificate (RankCertificate Sign, Hull, Cone).
   std::int64_t cells_excluded_by_sign = 0, cells_excluded_by_hull = 0, cells_excluded_by_cone = 0;
+  /// Excluded because J123 keeps a weak sign (RankCertificate::NoFold).
+  std::int64_t cells_excluded_without_fold = 0;
   /// Cells of the finest level not excluded: the ones marched.
   std::int64_t cells_kept = 0;
   /// Cells left unexamined because the budget ran out (0 unless budget_exhausted).

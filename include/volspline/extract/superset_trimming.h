@@ -63,6 +63,8 @@ struct TrimmedBoundary {
   TriangleMesh mesh;
   /// The superset's extra per-vertex parameter, interpolated likewise (empty if none given).
   std::vector<double> extra;
+  /// Per vertex, a corner of the superset triangle it lies on (for tags such as a patch).
+  std::vector<int> source_vertex;
   SupersetTrimmingStats stats;
 };
 

@@ -57,6 +57,8 @@ struct SweptEnvelopeStats {
                rank_deficient_triangles = 0;
   /// 3-faces whose Jacobian vanishes identically (skipped, see above).
   int degenerate_three_faces = 0;
+  /// 3-faces whose Jacobian keeps a weak sign: they do not fold (no zero surface to extract).
+  int fold_free_three_faces = 0;
   /// Cells of the 3-face zero surfaces and of the rank-deficient set.
   std::int64_t cells_examined = 0, cells_kept = 0;
   std::int64_t rank_cells_examined = 0, rank_cells_kept = 0;
