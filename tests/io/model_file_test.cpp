@@ -42,6 +42,15 @@ void expect_identical(const TensorSpline<D>& a, const TensorSpline<D>& b) {
   EXPECT_TRUE(same_bits(a.weights(), b.weights()));
 }
 
+void expect_identical(const SweptSolid& a, const SweptSolid& b) {
+  ASSERT_EQ(a.generator.size(), b.generator.size());
+  for (std::size_t i = 0; i < a.generator.size(); ++i) expect_identical(a.generator[i], b.generator[i]);
+  expect_identical(a.path, b.path);
+  for (std::size_t k = 0; k < 3; ++k) expect_identical(a.frame[k], b.frame[k]);
+  EXPECT_EQ(a.frame_name, b.frame_name);
+  EXPECT_TRUE(same_bits({a.frame_fit_error}, {b.frame_fit_error}));
+}
+
 void expect_identical(const Model& a, const Model& b) {
   ASSERT_EQ(a.objects.size(), b.objects.size());
   EXPECT_EQ(a.metadata, b.metadata);
@@ -519,15 +528,17 @@ TEST(ModelFileExamples, EveryExampleParsesAndEvaluates) {
     const Model model = read_model(entry.path());
     ASSERT_FALSE(model.objects.empty());
     for (const ModelObject& object : model.objects) {
-      std::visit(
-          [](const auto& s) {
-            typename std::decay_t<decltype(s)>::Parameter t{};
-            for (std::size_t d = 0; d < t.size(); ++d)
-              t[d] = 0.5 * (s.domain_min(static_cast<int>(d)) + s.domain_max(static_cast<int>(d)));
-            const Eigen::VectorXd p = s.evaluate(t);
-            for (Eigen::Index c = 0; c < p.size(); ++c) EXPECT_TRUE(std::isfinite(p[c]));
-          },
-          object.spline);
+      const auto expect_finite_middle = [](const auto& s) {
+        typename std::decay_t<decltype(s)>::Parameter t{};
+        for (std::size_t d = 0; d < t.size(); ++d) t[d] = 0.5 * (s.domain_min(static_cast<int>(d)) + s.domain_max(static_cast<int>(d)));
+        const Eigen::VectorXd p = s.evaluate(t);
+        for (Eigen::Index c = 0; c < p.size(); ++c) EXPECT_TRUE(std::isfinite(p[c]));
+      };
+      if (const auto* swept = std::get_if<SweptSolid>(&object.spline)) {
+        for (const auto& patch : swept_patches(*swept)) expect_finite_middle(patch);
+      } else {
+        visit_spline(object, "test", "", expect_finite_middle);
+      }
     }
     // Examples are written in the writer's own layout.
     EXPECT_EQ(model_to_json(model), read_file(entry.path()));
