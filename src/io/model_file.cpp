@@ -538,9 +538,10 @@ void write_spline(std::ostringstream& out, const TensorSpline<D>& spline, bool b
 
 // One curve or volume of a swept solid: "{", its type and geometry, "}".
 template <int D>
-void write_part(std::ostringstream& out, const TensorSpline<D>& spline, const std::string& indent, const std::string& path) {
+void write_part(std::ostringstream& out, const TensorSpline<D>& spline, const std::string& indent, const std::string& path,
+                bool indent_first = true) {
   static const char* const kShapes[] = {"curve", "surface", "volume", "hypervolume"};
-  out << indent << "{\n" << indent << "  \"type\": \"bspline_" << kShapes[D - 1] << "\",\n";
+  out << (indent_first ? indent : "") << "{\n" << indent << "  \"type\": \"bspline_" << kShapes[D - 1] << "\",\n";
   write_spline(out, spline, false, indent + "  ", path);
   out << "\n" << indent << "}";
 }
@@ -551,8 +552,8 @@ void write_swept_solid(std::ostringstream& out, const SweptSolid& solid, const s
     write_part(out, solid.generator[i], indent + "  ", json_index_path(json_key_path(path, "generator"), i));
     out << (i + 1 < solid.generator.size() ? ",\n" : "\n");
   }
-  out << indent << "],\n" << indent << "\"path\":\n";
-  write_part(out, solid.path, indent, json_key_path(path, "path"));
+  out << indent << "],\n" << indent << "\"path\": ";
+  write_part(out, solid.path, indent, json_key_path(path, "path"), false);
   out << ",\n" << indent << "\"frame\": {\"curves\": [\n";
   for (std::size_t k = 0; k < 3; ++k) {
     write_part(out, solid.frame[k], indent + "  ", json_index_path(json_key_path(json_key_path(path, "frame"), "curves"), k));
