@@ -13,6 +13,7 @@
 #include "support/test_splines.h"
 #include "volspline/construct/swept_examples.h"
 #include "volspline/core/error.h"
+#include "volspline/io/model_file.h"
 
 namespace volspline {
 namespace {
@@ -289,6 +290,37 @@ TEST(SweptExamples, PaperFiguresBuild) {
     for (std::size_t p = 0; p < patches.size(); ++p) {
       const Vector3d g = solid.generator[p].evaluate({0.5, 0.5, 0.5}).head<3>();
       EXPECT_LE((patches[p].evaluate({0.5, 0.5, 0.5, 0.0}).head<3>() - (c0 + r0 * g)).norm(), 1e-12 * (1.0 + c0.norm() + g.norm()));
+    }
+  }
+}
+
+// The example files are the constructions (written with 17 digits, so equal to rounding).
+TEST(SweptExamples, ExampleFilesAreTheConstructions) {
+  const std::pair<const char*, SweptSolid> examples[] = {
+      {"swept-torus-semicircle.json", torus_along_semicircle()},
+      {"swept-tumbling-cylinder.json", tumbling_cylinder()},
+      {"swept-folded-cube-cubic.json", folded_cube_along_cubic()},
+      {"swept-turning-folded-cylinder.json", turning_folded_cylinder()},
+      {"swept-tumbling-folded-cube.json", tumbling_folded_cube()},
+      {"swept-rotating-box.json", rotating_box()},
+      {"swept-translated-box.json", translated_box(Vector3d(1, 2, 0.5), Vector3d(3, -1, 2))},
+      {"swept-translated-ball.json", translated_ball(1.0, Vector3d(3, 0, 0))},
+  };
+  std::mt19937 rng(8);
+  for (const auto& [file, expected] : examples) {
+    SCOPED_TRACE(file);
+    const Model model = read_model(std::string(VOLSPLINE_SOURCE_DIR) + "/examples/" + file);
+    ASSERT_EQ(model.objects.size(), 1u);
+    const auto& solid = std::get<SweptSolid>(model.objects[0].spline);
+    EXPECT_EQ(solid.frame_name, expected.frame_name);
+    EXPECT_NEAR(solid.frame_fit_error, expected.frame_fit_error, 1e-9);
+    ASSERT_EQ(solid.generator.size(), expected.generator.size());
+    for (std::size_t p = 0; p < solid.generator.size(); ++p) {
+      const BSplineHypervolume a = swept_patch(solid, p), b = swept_patch(expected, p);
+      for (int i = 0; i < 5; ++i) {
+        const auto x = random_parameter(rng, b);
+        EXPECT_LE((a.evaluate(x) - b.evaluate(x)).norm(), 1e-12 * (1.0 + b.evaluate(x).norm()));
+      }
     }
   }
 }
