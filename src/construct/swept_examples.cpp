@@ -13,25 +13,7 @@
 
 namespace volspline {
 
-namespace {
-
 using Eigen::Vector3d;
-
-SweptSolidFrame rotation(const Vector3d& axis, double degrees) {
-  SweptSolidFrame frame;
-  frame.kind = SweptSolidFrame::Kind::Rotation;
-  frame.axis = axis;
-  frame.degrees = degrees;
-  return frame;
-}
-
-SweptSolidFrame of_kind(SweptSolidFrame::Kind kind) {
-  SweptSolidFrame frame;
-  frame.kind = kind;
-  return frame;
-}
-
-}  // namespace
 
 std::vector<BSplineVolume> torus_quarter_patches(double major, double minor) {
   const BSplineVolume quarter = torus(major, minor, 90.0);
@@ -77,21 +59,21 @@ BSplineCurve line_path(const Vector3d& from, const Vector3d& to) {
 }
 
 SweptSolid torus_along_semicircle() {
-  return make_swept_solid(torus_quarter_patches(), semicircle_path(), of_kind(SweptSolidFrame::Kind::Frenet));
+  return make_swept_solid(torus_quarter_patches(), semicircle_path(), SweptSolidFrame::of_kind(SweptSolidFrame::Kind::Frenet));
 }
 
 SweptSolid tumbling_cylinder() {
-  return make_swept_solid({cylinder(1.0, 2.0)}, line_path(Vector3d::Zero(), Vector3d(6.0, 0.0, 0.0)), rotation(Vector3d::UnitX(), 180.0));
+  return make_swept_solid({cylinder(1.0, 2.0)}, line_path(Vector3d::Zero(), Vector3d(6.0, 0.0, 0.0)), SweptSolidFrame::rotation(Vector3d::UnitX(), 180.0));
 }
 
 SweptSolid folded_cube_along_cubic() { return make_swept_solid({folded_cube()}, curved_loft_path(), SweptSolidFrame{}); }
 
 SweptSolid turning_folded_cylinder() {
-  return make_swept_solid({folded_cylinder()}, line_path(Vector3d::Zero(), Vector3d(0.0, 0.0, 6.0)), rotation(Vector3d::UnitZ(), 90.0));
+  return make_swept_solid({folded_cylinder()}, line_path(Vector3d::Zero(), Vector3d(0.0, 0.0, 6.0)), SweptSolidFrame::rotation(Vector3d::UnitZ(), 90.0));
 }
 
 SweptSolid tumbling_folded_cube() {
-  return make_swept_solid({folded_cube()}, semicircle_path(), rotation(Vector3d::UnitX(), 180.0));
+  return make_swept_solid({folded_cube()}, semicircle_path(), SweptSolidFrame::rotation(Vector3d::UnitX(), 180.0));
 }
 
 SweptSolid translated_box(const Vector3d& size, const Vector3d& displacement) {
@@ -104,7 +86,7 @@ SweptSolid translated_ball(double radius, const Vector3d& displacement) {
 
 SweptSolid rotating_box() {
   return make_swept_solid({box(Vector3d(1.0, 1.0, 1.0), Vector3d(1.5, 0.0, 0.5))}, line_path(Vector3d::Zero(), Vector3d::Zero()),
-                          rotation(Vector3d::UnitZ(), 360.0));
+                          SweptSolidFrame::rotation(Vector3d::UnitZ(), 360.0));
 }
 
 }  // namespace volspline

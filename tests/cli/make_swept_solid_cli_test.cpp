@@ -55,10 +55,8 @@ TEST_F(MakeSweptSolidCli, WritesTheLibrarysSweptSolid) {
   const Model m = read_model(path("out.json"));
   ASSERT_EQ(m.objects.size(), 1u);
   const auto& solid = std::get<SweptSolid>(m.objects[0].spline);
-  SweptSolidFrame frame;
-  frame.kind = SweptSolidFrame::Kind::Rotation;
-  frame.degrees = -135;
-  const SweptSolid expected = make_swept_solid(torus_quarter_patches(), line_path(Vector3d::Zero(), Vector3d(0, 0, 4)), frame);
+  const SweptSolid expected = make_swept_solid(torus_quarter_patches(), line_path(Vector3d::Zero(), Vector3d(0, 0, 4)),
+                                               SweptSolidFrame::rotation(Vector3d::UnitZ(), -135));
   ASSERT_EQ(solid.generator.size(), 4u);
   for (std::size_t p = 0; p < 4; ++p) {
     const auto a = swept_patch(solid, p), b = swept_patch(expected, p);

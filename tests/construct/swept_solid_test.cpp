@@ -38,20 +38,8 @@ BSplineCurve near_constant(std::mt19937& rng, const Vector3d& e, int degree, int
   return BSplineCurve(r.knot_vectors(), 3, std::move(points), r.weights());
 }
 
-SweptSolidFrame curves_frame(std::vector<BSplineCurve> curves) {
-  SweptSolidFrame frame;
-  frame.kind = SweptSolidFrame::Kind::Curves;
-  frame.curves = std::move(curves);
-  return frame;
-}
-
-SweptSolidFrame rotation(const Vector3d& axis, double degrees) {
-  SweptSolidFrame frame;
-  frame.kind = SweptSolidFrame::Kind::Rotation;
-  frame.axis = axis;
-  frame.degrees = degrees;
-  return frame;
-}
+SweptSolidFrame curves_frame(std::vector<BSplineCurve> curves) { return SweptSolidFrame::of_curves(std::move(curves)); }
+SweptSolidFrame rotation(const Vector3d& axis, double degrees) { return SweptSolidFrame::rotation(axis, degrees); }
 
 // s(u, v, w, t) against c(tau) + R(tau) g(u, v, w) evaluated from the inputs as given, with tau
 // the affine image of t in the path's and each frame curve's own domain.

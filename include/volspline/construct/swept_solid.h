@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -42,6 +43,26 @@ struct SweptSolidFrame {
   std::vector<BSplineCurve> curves;
   /// Frenet and RotationMinimizing: the bound on the fit's orthonormality error.
   double tolerance = kSweepFrameTolerance;
+
+  /// A frame of `kind` with the defaults above.
+  static SweptSolidFrame of_kind(Kind kind) {
+    SweptSolidFrame frame;
+    frame.kind = kind;
+    return frame;
+  }
+  /// The rotation about `axis` by `degrees` * t (exact at arc ends; make_swept_solid).
+  static SweptSolidFrame rotation(const Eigen::Vector3d& axis, double degrees) {
+    SweptSolidFrame frame = of_kind(Kind::Rotation);
+    frame.axis = axis;
+    frame.degrees = degrees;
+    return frame;
+  }
+  /// The given curves b, n, t.
+  static SweptSolidFrame of_curves(std::vector<BSplineCurve> curves) {
+    SweptSolidFrame frame = of_kind(Kind::Curves);
+    frame.curves = std::move(curves);
+    return frame;
+  }
 };
 
 /// A swept solid ready to be evaluated: every curve is over t in [0, 1].
