@@ -89,7 +89,7 @@ std::vector<ModelObject> bezier_objects_as(const ModelObject& object, const std:
 }  // namespace
 
 ModelObject refine_object(const ModelObject& object, const std::vector<RefinementStep>& steps) {
-  return visit_spline(object, "refinement", "type",
+  return visit_spline(object, "conversion", "type",
                       [&](const auto& s) { return refine_as<std::decay_t<decltype(s)>::num_parameters>(object, steps); });
 }
 

@@ -105,5 +105,24 @@ TEST_F(MakeSweptSolidCli, BadInputExitsWithTwoNamingTheFile) {
   expect_bad(g + " --path " + path("missing.json"), "missing.json");
 }
 
+// Commands that work on volumes or splines say why they do not take a swept solid.
+TEST_F(MakeSweptSolidCli, OtherCommandsReportOrSkipSweptSolids) {
+  const std::string example = std::string(VOLSPLINE_SOURCE_DIR) + "/examples/swept-rotating-box.json";
+  const auto info = test_support::run_cli("info " + example, tmp.path());
+  EXPECT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("swept_solid"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("frame           rotate"), std::string::npos) << info.out;
+  const auto faces = test_support::run_cli("faces " + example + " -o " + path("f.ply"), tmp.path());
+  EXPECT_EQ(faces.code, 2);
+  EXPECT_NE(faces.err.find("swept solids and hypervolumes are skipped"), std::string::npos) << faces.err;
+  const auto eval = test_support::run_cli("eval " + example + " --at 0.5", tmp.path());
+  EXPECT_EQ(eval.code, 2);
+  EXPECT_NE(eval.err.find("not on a swept solid"), std::string::npos) << eval.err;
+  const auto vtu = test_support::run_cli("convert " + example + " -o " + path("s.vtu"), tmp.path());
+  EXPECT_EQ(vtu.code, 2);
+  EXPECT_NE(vtu.err.find("objects[0].type: conversion works on splines, not on a swept solid"), std::string::npos) << vtu.err;
+  EXPECT_FALSE(std::filesystem::exists(path("s.vtu")));
+}
+
 }  // namespace
 }  // namespace volspline
