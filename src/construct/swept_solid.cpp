@@ -217,7 +217,10 @@ SweptSolid make_swept_solid(std::vector<BSplineVolume> generator, BSplineCurve p
       const double length = frame.axis.norm();
       if (!std::isfinite(length) || length == 0.0)
         throw InvalidInput("expected a nonzero finite rotation axis", "frame.rotate.axis");
-      if (!std::isfinite(frame.degrees)) throw InvalidInput("expected a finite angle in degrees", "frame.rotate.degrees");
+      if (!(std::abs(frame.degrees) <= kMaxRotationDegrees))
+        throw InvalidInput("expected an angle of at most " + format_double(kMaxRotationDegrees) + " degrees (100 turns), got " +
+                               format_double(frame.degrees),
+                           "frame.rotate.degrees");
       curves = rotation_frame(frame.axis / length, frame.degrees);
       name = "rotate";
       break;

@@ -49,6 +49,10 @@ constexpr std::array<TypeInfo, 8> kTypes{{
 }};
 constexpr std::size_t kClassicTypes = 6;
 constexpr const char* kSweptSolidType = "swept_solid";
+// A frenet or rmf frame is fitted while the file is read; the fit may halve every span 12 times,
+// so its cost is bounded by bounding the path (a larger one is fitted by `make swept-solid`, which
+// stores the fitted curves).
+constexpr int kMaxFittedPathSpans = 64;
 
 void check_keys(const json& object, const std::string& path, std::initializer_list<const char*> allowed) {
   for (const auto& item : object.items()) {
@@ -357,6 +361,14 @@ SweptSolid read_swept_solid(const json& object, const std::string& path) {
                                          json_key_path(path, "path"), "a curve");
   const auto frame_it = object.find("frame");
   const SweptSolidFrame frame = frame_it == object.end() ? SweptSolidFrame{} : read_frame(*frame_it, json_key_path(path, "frame"));
+  if ((frame.kind == SweptSolidFrame::Kind::Frenet || frame.kind == SweptSolidFrame::Kind::RotationMinimizing) &&
+      path_curve.knot_vector(0).num_spans() > kMaxFittedPathSpans) {
+    throw InvalidInput("a frenet or rmf frame is fitted when the file is read, for paths of at most " +
+                           std::to_string(kMaxFittedPathSpans) + " knot spans (this one has " +
+                           std::to_string(path_curve.knot_vector(0).num_spans()) +
+                           "); give the fitted frame as \"curves\" (volspline make swept-solid writes it)",
+                       json_key_path(path, "frame"));
+  }
   // frame_name and frame_fit_error say where given frame curves came from (written with them).
   const auto name_it = object.find("frame_name"), error_it = object.find("frame_fit_error");
   if ((name_it != object.end() || error_it != object.end()) && frame.kind != SweptSolidFrame::Kind::Curves) {

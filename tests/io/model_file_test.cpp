@@ -698,6 +698,20 @@ TEST(ModelFileSweptSolids, MalformedObjectsAreRefusedAtTheirJsonPath) {
            "objects[0].frame.rotate.speed");
   error_in(with([](json& o) { o["frame"] = json{{"curves", json::array({swept::line_curve()})}}; }), "objects[0].frame.curves");
   error_in(with([](json& o) { o["frame_name"] = "rmf"; }), "objects[0].frame_name");
+  error_in(with([](json& o) { o["frame"] = json::parse(R"({"rotate": {"axis": [0, 0, 1], "degrees": 1e12}})"); }),
+           "objects[0].frame.rotate.degrees");
+  // A fitted frame is fitted on reading only for paths of at most 64 spans.
+  const std::string long_path = error_in(with([](json& o) {
+    json knots = {0, 0};
+    json points = json::array();
+    for (int i = 0; i <= 65; ++i) points.push_back({i, i % 2, 0});
+    for (int i = 1; i < 65; ++i) knots.push_back(i);
+    knots.push_back(65);
+    knots.push_back(65);
+    o["path"] = {{"type", "bspline_curve"}, {"degree", {1}}, {"knots", {knots}}, {"control_points", points}};
+    o["frame"] = "rmf";
+  }), "objects[0].frame");
+  EXPECT_NE(long_path.find("at most 64 knot spans (this one has 65)"), std::string::npos) << long_path;
   error_in(with([](json& o) { o["attributes"] = json::object(); }), "objects[0].attributes");
   // Frame curves whose determinant vanishes: b = n.
   const std::string singular = error_in(with([](json& o) {

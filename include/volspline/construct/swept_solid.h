@@ -19,6 +19,9 @@
 
 namespace volspline {
 
+/// The largest |angle| of a Rotation frame, 100 turns (400 arcs): the frame's size grows with it.
+inline constexpr double kMaxRotationDegrees = 36000.0;
+
 /// How the generator turns along the path.
 struct SweptSolidFrame {
   enum class Kind {
@@ -88,7 +91,7 @@ struct SweptSolid {
 /// is not parameterised by angle. Frenet and RotationMinimizing: fit_sweep_frame of the path.
 /// \throw InvalidInput for an empty generator, a generator patch or path that is not
 /// 3-dimensional ("generator[i]", "path"), a Curves frame without exactly three 3-D curves, a
-/// zero or non-finite rotation axis or non-finite angle, a frame whose determinant vanishes or
+/// zero or non-finite rotation axis, an angle that is not finite or beyond kMaxRotationDegrees, a frame whose determinant vanishes or
 /// changes sign on [0, 1] (require_nonsingular_frame), or as fit_sweep_frame; NotConverged as
 /// fit_sweep_frame.
 SweptSolid make_swept_solid(std::vector<BSplineVolume> generator, BSplineCurve path, const SweptSolidFrame& frame);
