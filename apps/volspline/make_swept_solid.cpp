@@ -98,8 +98,8 @@ void make_swept_solid_file(const SweptSolidRequest& r) {
   write_model(model, r.out);
   std::cout << "wrote " << r.out << ": swept solid of " << count << " generator patch(es), frame " << solid.frame_name;
   if (frame.kind == SweptSolidFrame::Kind::Frenet || frame.kind == SweptSolidFrame::Kind::RotationMinimizing)
-    std::cout << ", frame fit error " << format_double(solid.frame_fit_error) << " (max |R^T R - I|, tolerance "
-              << format_double(frame.tolerance) << ")";
+    std::cout << ", frame fit error " << format_double(solid.frame_fit_error) << " (max |R^T R - I|, tolerance " << frame.tolerance
+              << ")";
   std::cout << "\n";
 }
 
