@@ -38,7 +38,8 @@ struct SweptSolidFrame {
     Curves,
   };
   Kind kind = Kind::Fixed;
-  /// Rotation: the axis (any nonzero length) and the total angle, any sign, any size.
+  /// Rotation: the axis (any nonzero length) and the total angle, any sign, at most
+  /// kMaxRotationDegrees in size.
   Eigen::Vector3d axis{0.0, 0.0, 1.0};
   double degrees = 0.0;
   /// Curves: exactly three 3-D curves b, n, t (any degrees, knots and weights; not necessarily
@@ -91,9 +92,9 @@ struct SweptSolid {
 /// is not parameterised by angle. Frenet and RotationMinimizing: fit_sweep_frame of the path.
 /// \throw InvalidInput for an empty generator, a generator patch or path that is not
 /// 3-dimensional ("generator[i]", "path"), a Curves frame without exactly three 3-D curves, a
-/// zero or non-finite rotation axis, an angle that is not finite or beyond kMaxRotationDegrees, a frame whose determinant vanishes or
-/// changes sign on [0, 1] (require_nonsingular_frame), or as fit_sweep_frame; NotConverged as
-/// fit_sweep_frame.
+/// zero or non-finite rotation axis, an angle that is not finite or beyond kMaxRotationDegrees,
+/// a frame whose determinant vanishes or changes sign on [0, 1] (require_nonsingular_frame), or
+/// as fit_sweep_frame; NotConverged as fit_sweep_frame.
 SweptSolid make_swept_solid(std::vector<BSplineVolume> generator, BSplineCurve path, const SweptSolidFrame& frame);
 
 /// The exact 4-variate spline s(u, v, w, t) = c(t) + R(t) g_patch(u, v, w) of one generator
