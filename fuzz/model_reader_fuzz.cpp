@@ -41,6 +41,15 @@ void check_same(const TensorSpline<D>& a, const TensorSpline<D>& b) {
   check_same(a.weights(), b.weights(), "a weight");
 }
 
+void check_same(const volspline::SweptSolid& a, const volspline::SweptSolid& b) {
+  if (a.generator.size() != b.generator.size()) mismatch("the generator");
+  for (std::size_t i = 0; i < a.generator.size(); ++i) check_same(a.generator[i], b.generator[i]);
+  check_same(a.path, b.path);
+  for (std::size_t k = 0; k < 3; ++k) check_same(a.frame[k], b.frame[k]);
+  if (a.frame_name != b.frame_name) mismatch("a frame name");
+  check_same(std::vector<double>{a.frame_fit_error}, std::vector<double>{b.frame_fit_error}, "a frame fit error");
+}
+
 void check_same(const Model& a, const Model& b) {
   if (a.objects.size() != b.objects.size()) mismatch("the number of objects");
   if (a.metadata != b.metadata) mismatch("the metadata");

@@ -64,7 +64,7 @@ void add_eval_command(CLI::App& app) {
                          "--object");
     const auto& object = model.objects[r->object];
     r->location = object_location(input->path, r->object);
-    const int k = std::visit([](const auto& s) { return s.dimension(); }, object.spline);
+    const int k = visit_spline(object, "eval", r->location, [](const auto& s) { return s.dimension(); });
     const auto rows = evaluate_rows(object, *r);
     if (r->json) {
       nlohmann::json out;

@@ -33,6 +33,16 @@ nlohmann::json describe(const TensorSpline<D>& s) {
   return j;
 }
 
+// A swept solid: its generator, path and frame (the hypervolume patches are made on demand).
+nlohmann::json describe(const SweptSolid& s) {
+  nlohmann::json j;
+  j["generator_patches"] = s.generator.size();
+  j["path"] = describe(s.path);
+  j["frame"] = s.frame_name;
+  j["frame_fit_error"] = s.frame_fit_error;
+  return j;
+}
+
 std::string list(const nlohmann::json& a, const char* sep = " x ") {
   std::string s;
   for (std::size_t i = 0; i < a.size(); ++i) s += (i ? sep : "") + a[i].dump();
@@ -113,6 +123,14 @@ void add_info_command(CLI::App& app) {
     for (const auto& j : out["objects"]) {
       std::cout << "object " << j["index"].get<std::size_t>() << ": " << j["type"].get<std::string>();
       if (j.contains("name")) std::cout << " \"" << j["name"].get<std::string>() << "\"";
+      if (j.contains("generator_patches")) {
+        std::cout << "\n  generator       " << j["generator_patches"].get<std::size_t>() << " volume patch(es)"
+                  << "\n  path            degree " << j["path"]["degree"][0].get<int>() << ", " << j["path"]["knot_spans"][0].get<int>()
+                  << " knot span(s), t in [0, 1]\n  frame           " << j["frame"].get<std::string>();
+        if (j["frame_fit_error"].get<double>() > 0) std::cout << " (fit error " << format_double(j["frame_fit_error"].get<double>()) << ")";
+        std::cout << "\n";
+        continue;
+      }
       std::cout << "\n  degree          " << list(j["degree"], ", ")
                 << "\n  control points  " << list(j["control_points"]) << " in R^" << j["dimension"].get<int>()
                 << "\n  knot spans      " << list(j["knot_spans"]) << "\n  domain          ";

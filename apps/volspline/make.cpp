@@ -262,6 +262,7 @@ void add_make_command(CLI::App& app) {
   add_profile_kinds(make);
   add_sweep_kind(make);
   add_joy_duchaineau_kinds(make);
+  add_make_swept_solid_kind(make);
 }
 
 }  // namespace volspline::cli

@@ -36,7 +36,29 @@ std::pair<std::vector<double>, std::vector<int>> knots_for(int q, const std::vec
   return {std::move(knots), std::move(span_of_knot)};
 }
 
+// Smoothness of `curve` at t: C^(p - multiplicity); a value that is no knot imposes nothing.
+int continuity(const BSplineCurve& curve, double t) {
+  const KnotVector& kv = curve.knot_vector(0);
+  const int m = kv.multiplicity(t);
+  return m == 0 ? std::numeric_limits<int>::max() : kv.degree() - m;
+}
+
 }  // namespace
+
+// The merged breakpoints of the curves, and the smallest continuity of the curves at each.
+std::pair<std::vector<double>, std::vector<int>> merged_breakpoints(const std::vector<const BSplineCurve*>& curves) {
+  std::vector<double> breaks;
+  for (const auto* c : curves) {
+    const auto bp = c->knot_vector(0).breakpoints();
+    breaks.insert(breaks.end(), bp.begin(), bp.end());
+  }
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  std::vector<int> smoothness(breaks.size(), std::numeric_limits<int>::max());
+  for (std::size_t i = 1; i + 1 < breaks.size(); ++i)
+    for (const auto* c : curves) smoothness[i] = std::min(smoothness[i], continuity(*c, breaks[i]));
+  return {std::move(breaks), std::move(smoothness)};
+}
 
 PiecewiseBernstein homogeneous_pieces(const BSplineCurve& curve, const std::vector<double>& breaks) {
   std::vector<double> missing;

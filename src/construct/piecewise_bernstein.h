@@ -17,6 +17,10 @@ namespace volspline::detail {
 /// components.
 using PiecewiseBernstein = std::vector<BernsteinTensor<1>>;
 
+/// The union of the curves' breakpoints, ascending, and at each the smallest continuity of the
+/// curves there (C^(p - multiplicity); INT_MAX at the ends and where no curve has a knot).
+std::pair<std::vector<double>, std::vector<int>> merged_breakpoints(const std::vector<const BSplineCurve*>& curves);
+
 /// The homogeneous form of `curve` (Lasser 1994, eq. 4) on the merged breakpoints `breaks`
 /// (which contain the curve's own): its Bézier pieces after inserting the missing breakpoints.
 /// \throw Error if the extraction does not give one piece per span (a broken invariant).

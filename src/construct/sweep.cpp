@@ -21,13 +21,6 @@ using namespace detail;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-// Smoothness of `curve` at t: C^(p - multiplicity); a value that is no knot imposes nothing.
-int continuity(const BSplineCurve& curve, double t) {
-  const KnotVector& kv = curve.knot_vector(0);
-  const int m = kv.multiplicity(t);
-  return m == 0 ? std::numeric_limits<int>::max() : kv.degree() - m;
-}
-
 void require_common_domain(const BSplineCurve& path, const std::array<BSplineCurve, 3>& frame) {
   const double a = path.domain_min(0), b = path.domain_max(0);
   for (std::size_t k = 0; k < 3; ++k) {
@@ -37,21 +30,6 @@ void require_common_domain(const BSplineCurve& path, const std::array<BSplineCur
                          format_double(frame[k].domain_max(0)) + "], the path [" + format_double(a) + ", " + format_double(b) +
                          "]: they must be equal");
   }
-}
-
-// The merged breakpoints of the curves, and the smallest continuity of the curves at each.
-std::pair<std::vector<double>, std::vector<int>> merged_breakpoints(const std::array<const BSplineCurve*, 4>& curves) {
-  std::vector<double> breaks;
-  for (const auto* c : curves) {
-    const auto bp = c->knot_vector(0).breakpoints();
-    breaks.insert(breaks.end(), bp.begin(), bp.end());
-  }
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-  std::vector<int> smoothness(breaks.size(), std::numeric_limits<int>::max());
-  for (std::size_t i = 1; i + 1 < breaks.size(); ++i)
-    for (const auto* c : curves) smoothness[i] = std::min(smoothness[i], continuity(*c, breaks[i]));
-  return {std::move(breaks), std::move(smoothness)};
 }
 
 // M(w) = [[delta R, delta c], [0, delta]] (Lasser 1994, eq. 6) as 13 components per span: the
@@ -116,8 +94,11 @@ FrameMatrix frame_matrix(const std::array<const BSplineCurve*, 4>& curves, const
   return m;
 }
 
-// V_ijk = M_k F_ij (Lasser 1994, eq. 6, with M_k the k-th B-spline coefficient of M(w)).
-std::vector<double> swept_coefficients(const BSplineSurface& profile, const Eigen::MatrixXd& mk, bool rational) {
+// V_ijk = M_k F_ij (Lasser 1994, eq. 6, with M_k the k-th B-spline coefficient of M(w)); for a
+// volume generator the same with F_ijk and a fourth index (Conkey-Joy §4). The profile's control
+// points are one block (u fastest), so the sweep direction is the slowest index either way.
+template <int D>
+std::vector<double> swept_coefficients(const TensorSpline<D>& profile, const Eigen::MatrixXd& mk, bool rational) {
   const int nuv = profile.num_control_points_total(), nw = static_cast<int>(mk.rows());
   const int pcs = profile.coefficient_size(), vcs = rational ? 4 : 3;
   const auto& fh = profile.homogeneous();
@@ -141,21 +122,35 @@ std::vector<double> swept_coefficients(const BSplineSurface& profile, const Eige
   return coefficients;
 }
 
+// The profile (D parameters) moved by the frame curves: D + 1 parameters, the path's last.
+template <int D>
+TensorSpline<D + 1> sweep_profile(const TensorSpline<D>& profile, const BSplineCurve& path, const std::array<BSplineCurve, 3>& frame,
+                                  const std::string& profile_name) {
+  require_dimension(profile.dimension(), profile_name);
+  require_dimension(path.dimension(), "the sweep path");
+  require_common_domain(path, frame);
+  // The sweep-direction functions in the order of M's columns: frame columns, then the path.
+  const std::array<const BSplineCurve*, 4> curves{&frame[0], &frame[1], &frame[2], &path};
+  const auto [breaks, smoothness] = merged_breakpoints({curves.begin(), curves.end()});
+  const FrameMatrix m = frame_matrix(curves, breaks);
+  auto [k_sweep, mk] = to_bspline(m.entries, breaks, smoothness);
+  const bool rational = profile.is_rational() || m.rational;
+  std::array<KnotVector, D + 1> knots = [&]<std::size_t... I>(std::index_sequence<I...>) {
+    return std::array<KnotVector, D + 1>{profile.knot_vector(static_cast<int>(I))..., std::move(k_sweep)};
+  }(std::make_index_sequence<D>{});
+  return TensorSpline<D + 1>::from_homogeneous(std::move(knots), 3, rational, swept_coefficients(profile, mk, rational));
+}
+
 }  // namespace
 
 BSplineVolume sweep_with_frame_curves(const BSplineSurface& profile, const BSplineCurve& path,
                                       const std::array<BSplineCurve, 3>& frame) {
-  require_dimension(profile.dimension(), "the sweep profile");
-  require_dimension(path.dimension(), "the sweep path");
-  require_common_domain(path, frame);
-  // The w-direction functions in the order of M's columns: frame columns, then the path.
-  const std::array<const BSplineCurve*, 4> curves{&frame[0], &frame[1], &frame[2], &path};
-  const auto [breaks, smoothness] = merged_breakpoints(curves);
-  const FrameMatrix m = frame_matrix(curves, breaks);
-  auto [kw, mk] = to_bspline(m.entries, breaks, smoothness);
-  const bool rational = profile.is_rational() || m.rational;
-  return BSplineVolume::from_homogeneous({profile.knot_vector(0), profile.knot_vector(1), std::move(kw)}, 3, rational,
-                                         swept_coefficients(profile, mk, rational));
+  return sweep_profile(profile, path, frame, "the sweep profile");
+}
+
+BSplineHypervolume sweep_with_frame_curves(const BSplineVolume& generator, const BSplineCurve& path,
+                                           const std::array<BSplineCurve, 3>& frame) {
+  return sweep_profile(generator, path, frame, "the generator solid");
 }
 
 BSplineVolume sweep(const BSplineSurface& profile, const BSplineCurve& path, SweepFrame frame) {

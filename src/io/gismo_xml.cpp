@@ -504,7 +504,7 @@ std::string gismo_xml_text(const Model& model) {
       }
     }
     ids.insert(id);
-    std::visit([&](const auto& spline) { put_geometry(root, spline, id, path); }, object.spline);
+    visit_classic_spline(object, "G+Smo XML", path, [&](const auto& spline) { put_geometry(root, spline, id, path); });
   }
   if (model.metadata.is_object()) {
     const auto g = model.metadata.find("gismo");

@@ -388,7 +388,8 @@ std::string irit_itd_text(const Model& model) {
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
     const ModelObject& object = model.objects[i];
     out += "[OBJECT " + irit_name(object.name) + "\n";
-    std::visit([&](const auto& spline) { write_spline(out, spline, "objects[" + std::to_string(i) + "]"); }, object.spline);
+    const std::string path = "objects[" + std::to_string(i) + "]";
+    visit_classic_spline(object, "IRIT", path, [&](const auto& spline) { write_spline(out, spline, path); });
     out += "]\n";
   }
   return out;

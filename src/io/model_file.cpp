@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <type_traits>
 #include <utility>
 
 #include "volspline/core/error.h"
@@ -35,14 +36,23 @@ struct TypeInfo {
   bool bezier;
 };
 
-constexpr std::array<TypeInfo, 6> kTypes{{
+// The first six are the classic types, listed first in messages; the 4-variate ones follow.
+constexpr std::array<TypeInfo, 8> kTypes{{
     {"bspline_curve", 1, false},
     {"bspline_surface", 2, false},
     {"bspline_volume", 3, false},
     {"bezier_curve", 1, true},
     {"bezier_surface", 2, true},
     {"bezier_volume", 3, true},
+    {"bspline_hypervolume", 4, false},
+    {"bezier_hypervolume", 4, true},
 }};
+constexpr std::size_t kClassicTypes = 6;
+constexpr const char* kSweptSolidType = "swept_solid";
+// A frenet or rmf frame is fitted while the file is read; the fit may halve every span 12 times,
+// so its cost is bounded by bounding the path (a larger one is fitted by `make swept-solid`, which
+// stores the fitted curves).
+constexpr int kMaxFittedPathSpans = 64;
 
 void check_keys(const json& object, const std::string& path, std::initializer_list<const char*> allowed) {
   for (const auto& item : object.items()) {
@@ -231,24 +241,168 @@ std::map<std::string, std::vector<double>> read_attributes(const json& value, co
   return attributes;
 }
 
-ModelObject read_object(const json& object, const std::string& path) {
-  if (!object.is_object()) fail("an object (a curve, surface or volume)", object, path);
-  check_keys(object, path, {"name", "type", "degree", "knots", "control_points", "weights", "attributes", "metadata"});
+// Control points of a spline object; a swept solid has none of its own.
+int control_point_count(const SplineObject& spline) {
+  return std::visit(
+      [](const auto& s) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(s)>, SweptSolid>) return 0;
+        else return s.num_control_points_total();
+      },
+      spline);
+}
 
-  const json& type_json = required(object, "type", path, "one of bspline_curve, bspline_surface, bspline_volume, "
-                                                         "bezier_curve, bezier_surface, bezier_volume");
-  const std::string type_path = json_key_path(path, "type");
+// "one of bspline_curve, ..., bezier_volume" and the other types after them.
+std::string type_names(std::size_t count) {
   std::string names;
-  for (const TypeInfo& t : kTypes) names += (names.empty() ? "" : ", ") + std::string(t.name);
-  if (!type_json.is_string()) fail("a type name (one of " + names + ")", type_json, type_path);
+  for (std::size_t i = 0; i < count; ++i) names += (names.empty() ? "" : ", ") + std::string(kTypes[i].name);
+  return names;
+}
+std::string other_type_names() {
+  return type_names(kTypes.size()).substr(type_names(kClassicTypes).size() + 2) + ", " + kSweptSolidType;
+}
+
+const TypeInfo& spline_type(const json& object, const std::string& path) {
+  const json& type_json = required(object, "type", path, "one of " + type_names(kTypes.size()) + ", " + kSweptSolidType);
+  const std::string type_path = json_key_path(path, "type");
+  const std::string others = " (or " + other_type_names() + ")";
+  if (!type_json.is_string()) throw InvalidInput("expected a type name (one of " + type_names(kClassicTypes) + others + "), got " +
+                                                     describe_json_value(type_json), type_path);
   const std::string& type_name = type_json.get_ref<const std::string&>();
   const auto type = std::find_if(kTypes.begin(), kTypes.end(), [&](const TypeInfo& t) { return type_name == t.name; });
-  if (type == kTypes.end()) fail("one of " + names, type_json, type_path);
-  if (type->bezier && object.contains("knots")) {
-    throw InvalidInput(std::string("a ") + type->name + " has no \"knots\": its domain is [0, 1] in every direction "
-                           "(use type \"bspline_" + (type_name.c_str() + 7) + "\" to give knots)",
+  if (type == kTypes.end())
+    throw InvalidInput("expected one of " + type_names(kClassicTypes) + ", got " + describe_json_value(type_json) + others, type_path);
+  return *type;
+}
+
+SplineObject read_spline_of(const json& object, const std::string& path, const TypeInfo& type) {
+  switch (type.parameters) {
+    case 1:
+      return read_spline<1>(object, path, type);
+    case 2:
+      return read_spline<2>(object, path, type);
+    case 3:
+      return read_spline<3>(object, path, type);
+    default:
+      return read_spline<4>(object, path, type);
+  }
+}
+
+void reject_bezier_knots(const json& object, const std::string& path, const TypeInfo& type) {
+  if (type.bezier && object.contains("knots")) {
+    const std::string shape = type.name + 7;
+    throw InvalidInput(std::string("a ") + type.name + " has no \"knots\": its domain is [0, 1] in every direction "
+                           "(use type \"bspline_" + shape + "\" to give knots)",
                        json_key_path(path, "knots"));
   }
+}
+
+// A curve or volume inside a swept solid: only the geometry keys (name, attributes and metadata
+// belong to the swept solid).
+template <int D>
+TensorSpline<D> read_part(const json& object, const std::string& path, const char* what) {
+  if (!object.is_object()) fail(std::string("an object (") + what + ")", object, path);
+  check_keys(object, path, {"type", "degree", "knots", "control_points", "weights"});
+  const TypeInfo& type = spline_type(object, path);
+  if (type.parameters != D) {
+    throw InvalidInput(std::string("expected ") + what + " (bspline_" + (D == 1 ? "curve" : "volume") + " or bezier_" +
+                           (D == 1 ? "curve" : "volume") + "), got a " + type.name,
+                       json_key_path(path, "type"));
+  }
+  reject_bezier_knots(object, path, type);
+  return read_spline<D>(object, path, type);
+}
+
+SweptSolidFrame read_frame(const json& value, const std::string& path) {
+  const std::string expected =
+      "a frame: \"fixed\", \"frenet\", \"rmf\", {\"rotate\": {\"axis\": [x, y, z], \"degrees\": d}} or {\"curves\": [b, n, t]}";
+  SweptSolidFrame frame;
+  if (value.is_string()) {
+    const std::string& name = value.get_ref<const std::string&>();
+    if (name == "fixed") frame.kind = SweptSolidFrame::Kind::Fixed;
+    else if (name == "frenet") frame.kind = SweptSolidFrame::Kind::Frenet;
+    else if (name == "rmf") frame.kind = SweptSolidFrame::Kind::RotationMinimizing;
+    else fail(expected, value, path);
+    return frame;
+  }
+  if (!value.is_object() || value.size() != 1) fail(expected, value, path);
+  if (const auto it = value.find("rotate"); it != value.end()) {
+    const std::string at = json_key_path(path, "rotate");
+    if (!it->is_object()) fail("an object with the keys \"axis\" and \"degrees\"", *it, at);
+    check_keys(*it, at, {"axis", "degrees"});
+    const json& axis = required(*it, "axis", at, "the rotation axis [x, y, z]");
+    if (!axis.is_array() || axis.size() != 3) fail("an array of 3 numbers (the rotation axis)", axis, json_key_path(at, "axis"));
+    const std::vector<double> a = numbers(axis, json_key_path(at, "axis"), "an array of 3 numbers");
+    frame.kind = SweptSolidFrame::Kind::Rotation;
+    frame.axis = Eigen::Vector3d(a[0], a[1], a[2]);
+    if (frame.axis.isZero(0.0)) fail("a nonzero rotation axis", axis, json_key_path(at, "axis"));
+    frame.degrees = number(required(*it, "degrees", at, "the angle in degrees at the end of the path"), json_key_path(at, "degrees"));
+    return frame;
+  }
+  if (const auto it = value.find("curves"); it != value.end()) {
+    const std::string at = json_key_path(path, "curves");
+    if (!it->is_array() || it->size() != 3) fail("an array of 3 curves (b, n, t: the columns of R(t))", *it, at);
+    frame.kind = SweptSolidFrame::Kind::Curves;
+    for (std::size_t k = 0; k < 3; ++k) frame.curves.push_back(read_part<1>((*it)[k], json_index_path(at, k), "a frame curve"));
+    return frame;
+  }
+  fail(expected, value, path);
+}
+
+SweptSolid read_swept_solid(const json& object, const std::string& path) {
+  check_keys(object, path, {"name", "type", "generator", "path", "frame", "frame_name", "frame_fit_error", "metadata"});
+  const std::string generator_path = json_key_path(path, "generator");
+  const json& generator_json = required(object, "generator", path, "an array of volume objects (the generator patches)");
+  if (!generator_json.is_array() || generator_json.empty())
+    fail("a nonempty array of volume objects (the generator patches)", generator_json, generator_path);
+  std::vector<BSplineVolume> generator;
+  for (std::size_t i = 0; i < generator_json.size(); ++i)
+    generator.push_back(read_part<3>(generator_json[i], json_index_path(generator_path, i), "a volume"));
+  BSplineCurve path_curve = read_part<1>(required(object, "path", path, "a curve object (the trajectory c(t))"),
+                                         json_key_path(path, "path"), "a curve");
+  const auto frame_it = object.find("frame");
+  const SweptSolidFrame frame = frame_it == object.end() ? SweptSolidFrame{} : read_frame(*frame_it, json_key_path(path, "frame"));
+  if ((frame.kind == SweptSolidFrame::Kind::Frenet || frame.kind == SweptSolidFrame::Kind::RotationMinimizing) &&
+      path_curve.knot_vector(0).num_spans() > kMaxFittedPathSpans) {
+    throw InvalidInput("a frenet or rmf frame is fitted when the file is read, for paths of at most " +
+                           std::to_string(kMaxFittedPathSpans) + " knot spans (this one has " +
+                           std::to_string(path_curve.knot_vector(0).num_spans()) +
+                           "); give the fitted frame as \"curves\" (volspline make swept-solid writes it)",
+                       json_key_path(path, "frame"));
+  }
+  // frame_name and frame_fit_error say where given frame curves came from (written with them).
+  const auto name_it = object.find("frame_name"), error_it = object.find("frame_fit_error");
+  if ((name_it != object.end() || error_it != object.end()) && frame.kind != SweptSolidFrame::Kind::Curves) {
+    throw InvalidInput("\"frame_name\" and \"frame_fit_error\" go only with a frame given by \"curves\"",
+                       json_key_path(path, name_it != object.end() ? "frame_name" : "frame_fit_error"));
+  }
+  std::string frame_name;
+  if (name_it != object.end()) {
+    if (!name_it->is_string()) fail("a string", *name_it, json_key_path(path, "frame_name"));
+    frame_name = name_it->get<std::string>();
+  }
+  double fit_error = 0.0;
+  if (error_it != object.end()) {
+    fit_error = number(*error_it, json_key_path(path, "frame_fit_error"));
+    if (fit_error < 0.0) fail("a number >= 0", *error_it, json_key_path(path, "frame_fit_error"));
+  }
+  try {
+    SweptSolid solid = make_swept_solid(std::move(generator), std::move(path_curve), frame);
+    if (name_it != object.end()) solid.frame_name = std::move(frame_name);
+    if (error_it != object.end()) solid.frame_fit_error = fit_error;
+    return solid;
+  } catch (const InvalidInput& e) {
+    throw e.located(path);
+  }
+}
+
+ModelObject read_object(const json& object, const std::string& path) {
+  if (!object.is_object()) fail("an object (a curve, surface, volume, hypervolume or swept solid)", object, path);
+  const auto type_it = object.find("type");
+  const bool swept = type_it != object.end() && type_it->is_string() && type_it->get_ref<const std::string&>() == kSweptSolidType;
+  if (!swept) check_keys(object, path, {"name", "type", "degree", "knots", "control_points", "weights", "attributes", "metadata"});
+
+  const TypeInfo* type = swept ? nullptr : &spline_type(object, path);
+  if (type != nullptr) reject_bezier_knots(object, path, *type);
 
   std::string name;
   if (const auto it = object.find("name"); it != object.end()) {
@@ -256,20 +410,10 @@ ModelObject read_object(const json& object, const std::string& path) {
     name = it->get<std::string>();
   }
   json object_metadata = metadata(object, path);
-  const auto spline = [&]() -> SplineObject {
-    switch (type->parameters) {
-      case 1:
-        return read_spline<1>(object, path, *type);
-      case 2:
-        return read_spline<2>(object, path, *type);
-      default:
-        return read_spline<3>(object, path, *type);
-    }
-  };
-  ModelObject result{std::move(name), type->bezier, spline(), std::move(object_metadata)};
+  if (swept) return ModelObject{std::move(name), false, read_swept_solid(object, path), std::move(object_metadata)};
+  ModelObject result{std::move(name), type->bezier, read_spline_of(object, path, *type), std::move(object_metadata)};
   if (const auto it = object.find("attributes"); it != object.end()) {
-    result.attributes = read_attributes(*it, json_key_path(path, "attributes"),
-                                        std::visit([](const auto& s) { return s.num_control_points_total(); }, result.spline));
+    result.attributes = read_attributes(*it, json_key_path(path, "attributes"), control_point_count(result.spline));
   }
   return result;
 }
@@ -286,7 +430,7 @@ Model read_document(const json& root) {
     throw InvalidInput("unsupported format version " + version.dump() + ": " + supported, "volspline");
   }
 
-  const json& objects = required(root, "objects", "", "a nonempty array of curves, surfaces and volumes");
+  const json& objects = required(root, "objects", "", "a nonempty array of curves, surfaces, volumes and swept solids");
   if (!objects.is_array() || objects.empty()) {
     fail("a nonempty array of objects (curves, surfaces and volumes)", objects, "objects");
   }
@@ -404,6 +548,33 @@ void write_spline(std::ostringstream& out, const TensorSpline<D>& spline, bool b
   }
 }
 
+// One curve or volume of a swept solid: "{", its type and geometry, "}".
+template <int D>
+void write_part(std::ostringstream& out, const TensorSpline<D>& spline, const std::string& indent, const std::string& path,
+                bool indent_first = true) {
+  static const char* const kShapes[] = {"curve", "surface", "volume", "hypervolume"};
+  out << (indent_first ? indent : "") << "{\n" << indent << "  \"type\": \"bspline_" << kShapes[D - 1] << "\",\n";
+  write_spline(out, spline, false, indent + "  ", path);
+  out << "\n" << indent << "}";
+}
+
+void write_swept_solid(std::ostringstream& out, const SweptSolid& solid, const std::string& indent, const std::string& path) {
+  out << indent << "\"generator\": [\n";
+  for (std::size_t i = 0; i < solid.generator.size(); ++i) {
+    write_part(out, solid.generator[i], indent + "  ", json_index_path(json_key_path(path, "generator"), i));
+    out << (i + 1 < solid.generator.size() ? ",\n" : "\n");
+  }
+  out << indent << "],\n" << indent << "\"path\": ";
+  write_part(out, solid.path, indent, json_key_path(path, "path"), false);
+  out << ",\n" << indent << "\"frame\": {\"curves\": [\n";
+  for (std::size_t k = 0; k < 3; ++k) {
+    write_part(out, solid.frame[k], indent + "  ", json_index_path(json_key_path(json_key_path(path, "frame"), "curves"), k));
+    out << (k + 1 < 3 ? ",\n" : "\n");
+  }
+  out << indent << "]},\n" << indent << "\"frame_name\": " << json_text(json(solid.frame_name), json_key_path(path, "frame_name"), indent, false)
+      << ",\n" << indent << "\"frame_fit_error\": " << number_text(solid.frame_fit_error);
+}
+
 void write_attributes(std::ostringstream& out, const ModelObject& object, const std::string& path,
                       const std::string& indent) {
   try {
@@ -440,17 +611,21 @@ Model read_model(const std::filesystem::path& path) { return parse_model(read_fi
 std::string object_type_name(const ModelObject& object) {
   return std::visit(
       [&](const auto& spline) {
-        bool bezier = object.bezier;
-        for (const KnotVector& kv : spline.knot_vectors()) bezier = bezier && is_unit_bezier(kv);
-        const std::size_t parameters = spline.knot_vectors().size();
-        static const char* const kShapes[] = {"curve", "surface", "volume"};
-        return std::string(bezier ? "bezier_" : "bspline_") + kShapes[parameters - 1];
+        if constexpr (std::is_same_v<std::decay_t<decltype(spline)>, SweptSolid>) {
+          return std::string(kSweptSolidType);
+        } else {
+          bool bezier = object.bezier;
+          for (const KnotVector& kv : spline.knot_vectors()) bezier = bezier && is_unit_bezier(kv);
+          const std::size_t parameters = spline.knot_vectors().size();
+          static const char* const kShapes[] = {"curve", "surface", "volume", "hypervolume"};
+          return std::string(bezier ? "bezier_" : "bspline_") + kShapes[parameters - 1];
+        }
       },
       object.spline);
 }
 
 void validate_attributes(const ModelObject& object) {
-  const int count = std::visit([](const auto& s) { return s.num_control_points_total(); }, object.spline);
+  const int count = control_point_count(object.spline);
   for (const auto& [name, values] : object.attributes) {
     const std::string at = json_key_path("attributes", name);
     if (name.empty()) throw InvalidInput("expected a nonempty attribute name, got \"\"", at);
@@ -475,9 +650,13 @@ double evaluate_attribute(const ModelObject& object, const std::string& name, co
     throw InvalidInput("no attribute " + json_quoted(name) + " (the object has " +
                        (names.empty() ? std::string("none") : names) + ")");
   }
+  if (is_swept_solid(object)) throw InvalidInput("a swept solid has no attributes");
   return std::visit(
-      [&](const auto& spline) {
+      [&](const auto& spline) -> double {
         using Spline = std::decay_t<decltype(spline)>;
+        if constexpr (std::is_same_v<Spline, SweptSolid>) {
+          return 0.0;  // refused above
+        } else {
         constexpr int D = Spline::num_parameters;
         if (t.size() != static_cast<std::size_t>(D)) {
           throw InvalidInput("expected " + std::to_string(D) + " parameter values for a " + object_type_name(object) +
@@ -495,6 +674,7 @@ double evaluate_attribute(const ModelObject& object, const std::string& name, co
         double value = 0.0;
         field->evaluate(parameter, &value);
         return value;
+        }
       },
       object.spline);
 }
@@ -514,7 +694,12 @@ std::string model_to_json(const Model& model) {
     const std::string type = object_type_name(object);
     out << indent << "\"type\": \"" << type << "\",\n";
     const bool bezier = type.rfind("bezier_", 0) == 0;
-    std::visit([&](const auto& spline) { write_spline(out, spline, bezier, indent, path); }, object.spline);
+    std::visit(
+        [&](const auto& spline) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(spline)>, SweptSolid>) write_swept_solid(out, spline, indent, path);
+          else write_spline(out, spline, bezier, indent, path);
+        },
+        object.spline);
     if (!object.attributes.empty()) write_attributes(out, object, path, indent);
     if (!object.metadata.is_null()) write_metadata(out, object.metadata, json_key_path(path, "metadata"), indent);
     out << "\n    }" << (i + 1 < model.objects.size() ? ",\n" : "\n");

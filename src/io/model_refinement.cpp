@@ -89,12 +89,13 @@ std::vector<ModelObject> bezier_objects_as(const ModelObject& object, const std:
 }  // namespace
 
 ModelObject refine_object(const ModelObject& object, const std::vector<RefinementStep>& steps) {
-  return std::visit([&](const auto& s) { return refine_as<std::decay_t<decltype(s)>::num_parameters>(object, steps); }, object.spline);
+  return visit_spline(object, "conversion", "type",
+                      [&](const auto& s) { return refine_as<std::decay_t<decltype(s)>::num_parameters>(object, steps); });
 }
 
 std::vector<ModelObject> bezier_objects(const ModelObject& object, const std::vector<RefinementStep>& steps) {
-  return std::visit([&](const auto& s) { return bezier_objects_as<std::decay_t<decltype(s)>::num_parameters>(object, steps); },
-                    object.spline);
+  return visit_spline(object, "Bézier extraction", "type",
+                      [&](const auto& s) { return bezier_objects_as<std::decay_t<decltype(s)>::num_parameters>(object, steps); });
 }
 
 }  // namespace volspline

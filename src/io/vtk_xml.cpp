@@ -199,14 +199,13 @@ std::string vtu_text(const Model& model) {
   std::set<std::string> name_set;
   bool rational = false;
   bool jacobian = true;
-  for (const ModelObject& object : model.objects) {
+  for (std::size_t i = 0; i < model.objects.size(); ++i) {
+    const ModelObject& object = model.objects[i];
     for (const auto& item : object.attributes) name_set.insert(item.first);
-    std::visit(
-        [&](const auto& s) {
-          rational = rational || s.is_rational();
-          jacobian = jacobian && std::decay_t<decltype(s)>::num_parameters == 3 && s.dimension() == 3;
-        },
-        object.spline);
+    visit_classic_spline(object, "VTK", "objects[" + std::to_string(i) + "]", [&](const auto& s) {
+      rational = rational || s.is_rational();
+      jacobian = jacobian && std::decay_t<decltype(s)>::num_parameters == 3 && s.dimension() == 3;
+    });
   }
   std::vector<std::string> names(name_set.begin(), name_set.end());
   for (const std::string& name : names) {
@@ -217,7 +216,8 @@ std::string vtu_text(const Model& model) {
   Arrays a;
   a.attributes.resize(names.size());
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
-    std::visit([&](const auto& s) { write_object(a, s, model.objects[i], i, names, jacobian); }, model.objects[i].spline);
+    visit_classic_spline(model.objects[i], "VTK", "objects[" + std::to_string(i) + "]",
+                         [&](const auto& s) { write_object(a, s, model.objects[i], i, names, jacobian); });
   }
 
   std::string out = "<?xml version=\"1.0\"?>\n";

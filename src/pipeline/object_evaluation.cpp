@@ -52,11 +52,11 @@ std::vector<std::vector<double>> grid_rows(const TensorSpline<D>& s, const std::
 }  // namespace
 
 std::vector<double> evaluate_object_at(const ModelObject& object, const std::vector<double>& t, bool derivatives) {
-  return std::visit([&](const auto& s) { return row_at(s, t, derivatives); }, object.spline);
+  return visit_spline(object, "evaluation", "", [&](const auto& s) { return row_at(s, t, derivatives); });
 }
 
 std::vector<std::vector<double>> evaluate_object_on_grid(const ModelObject& object, const std::vector<int>& counts, bool derivatives) {
-  return std::visit([&](const auto& s) { return grid_rows(s, counts, derivatives); }, object.spline);
+  return visit_spline(object, "evaluation", "", [&](const auto& s) { return grid_rows(s, counts, derivatives); });
 }
 
 }  // namespace volspline

@@ -17,6 +17,7 @@
 #include "support/temporary_directory.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/io/model_volumes.h"
 
 namespace volspline {
 namespace {
@@ -40,6 +41,15 @@ void expect_identical(const TensorSpline<D>& a, const TensorSpline<D>& b) {
   }
   EXPECT_TRUE(same_bits(a.points(), b.points()));
   EXPECT_TRUE(same_bits(a.weights(), b.weights()));
+}
+
+void expect_identical(const SweptSolid& a, const SweptSolid& b) {
+  ASSERT_EQ(a.generator.size(), b.generator.size());
+  for (std::size_t i = 0; i < a.generator.size(); ++i) expect_identical(a.generator[i], b.generator[i]);
+  expect_identical(a.path, b.path);
+  for (std::size_t k = 0; k < 3; ++k) expect_identical(a.frame[k], b.frame[k]);
+  EXPECT_EQ(a.frame_name, b.frame_name);
+  EXPECT_TRUE(same_bits({a.frame_fit_error}, {b.frame_fit_error}));
 }
 
 void expect_identical(const Model& a, const Model& b) {
@@ -519,15 +529,17 @@ TEST(ModelFileExamples, EveryExampleParsesAndEvaluates) {
     const Model model = read_model(entry.path());
     ASSERT_FALSE(model.objects.empty());
     for (const ModelObject& object : model.objects) {
-      std::visit(
-          [](const auto& s) {
-            typename std::decay_t<decltype(s)>::Parameter t{};
-            for (std::size_t d = 0; d < t.size(); ++d)
-              t[d] = 0.5 * (s.domain_min(static_cast<int>(d)) + s.domain_max(static_cast<int>(d)));
-            const Eigen::VectorXd p = s.evaluate(t);
-            for (Eigen::Index c = 0; c < p.size(); ++c) EXPECT_TRUE(std::isfinite(p[c]));
-          },
-          object.spline);
+      const auto expect_finite_middle = [](const auto& s) {
+        typename std::decay_t<decltype(s)>::Parameter t{};
+        for (std::size_t d = 0; d < t.size(); ++d) t[d] = 0.5 * (s.domain_min(static_cast<int>(d)) + s.domain_max(static_cast<int>(d)));
+        const Eigen::VectorXd p = s.evaluate(t);
+        for (Eigen::Index c = 0; c < p.size(); ++c) EXPECT_TRUE(std::isfinite(p[c]));
+      };
+      if (const auto* swept = std::get_if<SweptSolid>(&object.spline)) {
+        for (const auto& patch : swept_patches(*swept)) expect_finite_middle(patch);
+      } else {
+        visit_spline(object, "test", "", expect_finite_middle);
+      }
     }
     // Examples are written in the writer's own layout.
     EXPECT_EQ(model_to_json(model), read_file(entry.path()));
@@ -575,6 +587,161 @@ TEST(ModelFileExamples, BentVolumeIsATricubicFiveByFiveByFour) {
   EXPECT_GT(volume.knot_vector(0).num_spans(), 1);
   // Bent upward: the far end lies higher than the middle.
   EXPECT_GT(volume.evaluate({1.0, 0.5, 0.0})[2], volume.evaluate({0.5, 0.5, 0.0})[2] + 0.5);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hypervolumes and swept solids.
+
+namespace swept {
+
+using volspline::test_support::random_spline;
+
+json line_curve() {
+  return json::parse(R"({"type": "bezier_curve", "degree": [1], "control_points": [[0, 0, 0], [2, 0, 0]]})");
+}
+json cube_volume() {
+  return json::parse(R"({"type": "bezier_volume", "degree": [1, 1, 1],
+    "control_points": [[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],[1,1,1]]})");
+}
+json swept_document(json frame) {
+  json object = {{"name", "swept"}, {"type", "swept_solid"}, {"generator", json::array({cube_volume(), cube_volume()})},
+                 {"path", line_curve()}};
+  if (!frame.is_null()) object["frame"] = std::move(frame);
+  return {{"volspline", 1}, {"objects", json::array({object, valid_document()["objects"][1]})}};
+}
+
+std::string error_in(const json& doc, const std::string& path) {
+  const std::string what = error_of(doc.dump());
+  EXPECT_EQ(what.rfind("model.json: " + path + ": ", 0), 0u) << what;
+  return what;
+}
+
+}  // namespace swept
+
+TEST(ModelFileSweptSolids, HypervolumesRoundTripBitExact) {
+  std::mt19937 rng(21);
+  Model model;
+  model.objects.push_back({"polynomial", false, random_spline<4>(rng, {2, 1, 1, 3}, 2, 3, false), nullptr});
+  model.objects.push_back({"rational", false, random_spline<4>(rng, {1, 2, 1, 2}, 1, 3, true, false), nullptr});
+  model.objects[1].attributes["temperature"].assign(static_cast<std::size_t>(std::get<BSplineHypervolume>(model.objects[1].spline).num_control_points_total()), 1.5);
+  const Model back = round_trip(model);
+  EXPECT_EQ(object_type_name(back.objects[0]), "bspline_hypervolume");
+  const auto& rational = std::get<BSplineHypervolume>(back.objects[1].spline);
+  std::vector<double> t;
+  for (int d = 0; d < 4; ++d) t.push_back(rational.domain_min(d));
+  EXPECT_DOUBLE_EQ(evaluate_attribute(back.objects[1], "temperature", t), 1.5);
+  // A Bézier hypervolume is read without knots, 2^4 control points, u fastest and t slowest.
+  json points = json::array();
+  for (int i = 0; i < 16; ++i) points.push_back({i & 1, (i >> 1) & 1, ((i >> 2) & 1) + (i >> 3)});
+  const json doc = {{"volspline", 1}, {"objects", json::array({{{"type", "bezier_hypervolume"}, {"degree", {1, 1, 1, 1}}, {"control_points", points}}})}};
+  const Model bezier = parse_model(doc.dump(), "m.json");
+  EXPECT_EQ(object_type_name(bezier.objects[0]), "bezier_hypervolume");
+  const auto& h = std::get<BSplineHypervolume>(bezier.objects[0].spline);
+  EXPECT_DOUBLE_EQ(h.evaluate({0.5, 0.5, 0.5, 1.0})[2], 1.5);
+  round_trip(bezier);
+  json bad = doc;
+  bad["objects"][0]["degree"] = {1, 1, 1};
+  EXPECT_CONTAINS(error_of(bad.dump()), "objects[0].degree: expected an array of 4 integers");
+}
+
+TEST(ModelFileSweptSolids, EveryFrameKindReadsAndRoundTripsBitExact) {
+  const json curves = {{"curves", json::array({swept::line_curve(), json::parse(R"({"type": "bspline_curve", "degree": [2],
+      "knots": [[0, 0, 0, 1, 1, 1]], "control_points": [[0, 1, 0], [0.3, 1, 0], [0, 1, 0]], "weights": [1, 2, 1]})"),
+      json::parse(R"({"type": "bezier_curve", "degree": [1], "control_points": [[0, 0, 1], [0, 0, 1]]})")})}};
+  const std::vector<json> frames{json(nullptr), json("fixed"), json("rmf"), json("frenet"),
+                                 json::parse(R"({"rotate": {"axis": [0, 0, 2], "degrees": -200}})"), curves};
+  for (const json& frame : frames) {
+    SCOPED_TRACE(frame.dump());
+    json doc = swept::swept_document(frame);
+    if (frame.is_object() && frame.contains("curves")) doc["objects"][0]["frame"]["curves"][0]["control_points"] = {{1, 0, 0}, {1, 0, 0}};
+    if (frame == json("frenet")) doc["objects"][0]["path"] = json::parse(R"({"type": "bezier_curve", "degree": [2],
+        "control_points": [[0, 0, 0], [1, 1, 0], [2, 0, 0]]})");
+    const Model model = parse_model(doc.dump(), "model.json");
+    ASSERT_TRUE(is_swept_solid(model.objects[0]));
+    EXPECT_EQ(object_type_name(model.objects[0]), "swept_solid");
+    const auto& solid = std::get<SweptSolid>(model.objects[0].spline);
+    EXPECT_EQ(solid.generator.size(), 2u);
+    EXPECT_EQ(solid.path.domain_min(0), 0.0);
+    EXPECT_EQ(solid.path.domain_max(0), 1.0);
+    round_trip(model);
+  }
+}
+
+TEST(ModelFileSweptSolids, MalformedObjectsAreRefusedAtTheirJsonPath) {
+  using swept::error_in;
+  using swept::swept_document;
+  auto with = [](auto change) {
+    json doc = swept_document("fixed");
+    change(doc["objects"][0]);
+    return doc;
+  };
+  EXPECT_NE(error_in(with([](json& o) { o.erase("generator"); }), "objects[0]").find("missing key \"generator\""), std::string::npos);
+  EXPECT_NE(error_in(with([](json& o) { o["generator"] = json::array(); }), "objects[0].generator").find("nonempty array"), std::string::npos);
+  EXPECT_NE(error_in(with([](json& o) { o["generator"][1] = swept::line_curve(); }), "objects[0].generator[1].type").find("expected a volume"),
+            std::string::npos);
+  error_in(with([](json& o) { o["generator"][0]["control_points"][3] = {1, 1}; }), "objects[0].generator[0].control_points[3]");
+  error_in(with([](json& o) { o["generator"][0]["metadata"] = json::object(); }), "objects[0].generator[0].metadata");
+  EXPECT_NE(error_in(with([](json& o) { o.erase("path"); }), "objects[0]").find("missing key \"path\""), std::string::npos);
+  EXPECT_NE(error_in(with([](json& o) { o["path"] = swept::cube_volume(); }), "objects[0].path.type").find("expected a curve"),
+            std::string::npos);
+  // A 2-D path and a 2-D generator patch.
+  EXPECT_NE(error_in(with([](json& o) { o["path"]["control_points"] = {{0, 0}, {1, 0}}; }), "objects[0].path").find("3-dimensional"),
+            std::string::npos);
+  error_in(with([](json& o) {
+    for (auto& p : o["generator"][1]["control_points"]) p.erase(2);
+  }), "objects[0].generator[1]");
+  EXPECT_NE(error_in(with([](json& o) { o["frame"] = "twisted"; }), "objects[0].frame").find("expected a frame"), std::string::npos);
+  error_in(with([](json& o) { o["frame"] = json::parse(R"({"rotate": {"axis": [0, 0], "degrees": 90}})"); }), "objects[0].frame.rotate.axis");
+  error_in(with([](json& o) { o["frame"] = json::parse(R"({"rotate": {"axis": [0, 0, 0], "degrees": 90}})"); }), "objects[0].frame.rotate.axis");
+  error_in(with([](json& o) { o["frame"] = json::parse(R"({"rotate": {"axis": [0, 0, 1]}})"); }), "objects[0].frame.rotate");
+  error_in(with([](json& o) { o["frame"] = json::parse(R"({"rotate": {"axis": [0, 0, 1], "degrees": 9, "speed": 1}})"); }),
+           "objects[0].frame.rotate.speed");
+  error_in(with([](json& o) { o["frame"] = json{{"curves", json::array({swept::line_curve()})}}; }), "objects[0].frame.curves");
+  error_in(with([](json& o) { o["frame_name"] = "rmf"; }), "objects[0].frame_name");
+  error_in(with([](json& o) { o["frame"] = json::parse(R"({"rotate": {"axis": [0, 0, 1], "degrees": 1e12}})"); }),
+           "objects[0].frame.rotate.degrees");
+  // A fitted frame is fitted on reading only for paths of at most 64 spans.
+  const std::string long_path = error_in(with([](json& o) {
+    json knots = {0, 0};
+    json points = json::array();
+    for (int i = 0; i <= 65; ++i) points.push_back({i, i % 2, 0});
+    for (int i = 1; i < 65; ++i) knots.push_back(i);
+    knots.push_back(65);
+    knots.push_back(65);
+    o["path"] = {{"type", "bspline_curve"}, {"degree", {1}}, {"knots", {knots}}, {"control_points", points}};
+    o["frame"] = "rmf";
+  }), "objects[0].frame");
+  EXPECT_NE(long_path.find("at most 64 knot spans (this one has 65)"), std::string::npos) << long_path;
+  error_in(with([](json& o) { o["attributes"] = json::object(); }), "objects[0].attributes");
+  // Frame curves whose determinant vanishes: b = n.
+  const std::string singular = error_in(with([](json& o) {
+    o["frame"] = json{{"curves", json::array({swept::line_curve(), swept::line_curve(), swept::line_curve()})}};
+  }), "objects[0].frame");
+  EXPECT_NE(singular.find("det R(t)"), std::string::npos) << singular;
+}
+
+TEST(ModelFileSweptSolids, VolumeLoopsAndSplineVisitorsHandleSweptSolids) {
+  const Model model = parse_model(swept::swept_document("fixed").dump(), "model.json");
+  EXPECT_EQ(count_volumes(model), 1u);
+  std::vector<std::size_t> visited;
+  for_each_volume(model, "model.json", [&](std::size_t i, const ModelObject&, const BSplineVolume&) { visited.push_back(i); });
+  EXPECT_EQ(visited, std::vector<std::size_t>{1});
+  Model only_swept = model;
+  only_swept.objects.pop_back();
+  try {
+    for_each_volume(only_swept, "model.json", [](std::size_t, const ModelObject&, const BSplineVolume&) {});
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(e.message().find("swept solids and hypervolumes are skipped"), std::string::npos) << e.message();
+  }
+  try {
+    visit_classic_spline(model.objects[0], "VTK", "objects[0]", [](const auto&) {});
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.where(), "objects[0]");
+    EXPECT_NE(e.message().find("not a swept_solid"), std::string::npos);
+  }
+  EXPECT_THROW(evaluate_attribute(model.objects[0], "x", {0.5}), InvalidInput);
 }
 
 }  // namespace

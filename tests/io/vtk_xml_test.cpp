@@ -66,7 +66,7 @@ std::string expected_values(const Model& model, std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t cell = 0;
   for (const ModelObject& object : model.objects) {
-    std::visit(
+    visit_classic_spline(object, "test", "",
         [&](const auto& spline) {
           constexpr int D = std::decay_t<decltype(spline)>::num_parameters;
           for (const auto& piece : bezier_pieces(spline)) {
@@ -92,8 +92,7 @@ std::string expected_values(const Model& model, std::mt19937& rng) {
             }
             ++cell;
           }
-        },
-        object.spline);
+        });
   }
   return out;
 }
@@ -153,7 +152,7 @@ std::map<std::string, std::string> run_vtk(const test_support::TemporaryDirector
 
 std::size_t total_cells(const Model& model) {
   std::size_t cells = 0;
-  for (const auto& object : model.objects) std::visit([&](const auto& s) { cells += bezier_pieces(s).size(); }, object.spline);
+  for (const auto& object : model.objects) visit_classic_spline(object, "test", "", [&](const auto& s) { cells += bezier_pieces(s).size(); });
   return cells;
 }
 
@@ -207,7 +206,7 @@ TEST(VtuFile, OurReaderGivesBackEveryCellAndItsAttributes) {
   std::size_t c = 0;
   double worst = 0.0;
   for (const ModelObject& object : model.objects) {
-    std::visit(
+    visit_classic_spline(object, "test", "",
         [&](const auto& spline) {
           using S = std::decay_t<decltype(spline)>;
           constexpr int D = S::num_parameters;
@@ -230,8 +229,7 @@ TEST(VtuFile, OurReaderGivesBackEveryCellAndItsAttributes) {
               }
             }
           }
-        },
-        object.spline);
+        });
   }
   EXPECT_LT(worst, 1e-12);
 }

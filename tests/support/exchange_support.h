@@ -21,7 +21,7 @@ inline Model random_exchange_model(std::mt19937& rng, int dimension = 3) {
   Model model;
   const auto add = [&](SplineObject spline, const std::string& name) {
     ModelObject object{name, false, std::move(spline), nullptr};
-    const int n = std::visit([](const auto& s) { return s.num_control_points_total(); }, object.spline);
+    const int n = visit_spline(object, "test", "", [](const auto& s) { return s.num_control_points_total(); });
     std::uniform_real_distribution<double> value(-5.0, 5.0);
     for (const char* attribute : {"temperature", "pressure"}) {
       if (std::string(attribute) == "pressure" && object.spline.index() != 2) continue;
@@ -68,8 +68,7 @@ inline double max_model_difference(const Model& a, const Model& b, std::mt19937&
   for (std::size_t i = 0; i < std::min(a.objects.size(), b.objects.size()); ++i) {
     EXPECT_EQ(a.objects[i].spline.index(), b.objects[i].spline.index()) << "object " << i;
     if (a.objects[i].spline.index() != b.objects[i].spline.index()) continue;
-    std::visit(
-        [&](const auto& x) {
+    visit_spline(a.objects[i], "comparison", "", [&](const auto& x) {
           using S = std::decay_t<decltype(x)>;
           const S& y = std::get<S>(b.objects[i].spline);
           worst = std::max(worst, max_difference(x, y, rng));
@@ -82,8 +81,7 @@ inline double max_model_difference(const Model& a, const Model& b, std::mt19937&
               worst = std::max(worst, std::abs(evaluate_attribute(a.objects[i], name, tv) - evaluate_attribute(b.objects[i], name, tv)));
             }
           }
-        },
-        a.objects[i].spline);
+        });
   }
   return worst;
 }

@@ -35,6 +35,14 @@ namespace volspline {
 BSplineVolume sweep_with_frame_curves(const BSplineSurface& profile, const BSplineCurve& path,
                                       const std::array<BSplineCurve, 3>& frame);
 
+/// The swept solid of Conkey-Joy 2000, eq. 1: s(u, v, w, t) = c(t) + R(t) g(u, v, w), the same
+/// construction with a generator solid for the profile (control points
+/// M_l g_ijk, Conkey-Joy §4), t the fourth parameter over the path's domain; degrees and
+/// denominators in t as above. The generator may be rational.
+/// 	hrow InvalidInput as the surface version (naming "the generator solid").
+BSplineHypervolume sweep_with_frame_curves(const BSplineVolume& generator, const BSplineCurve& path,
+                                           const std::array<BSplineCurve, 3>& frame);
+
 /// The profile moved along the path, given in world coordinates at the start of the path:
 ///   V(u, v, w) = c(w) + R(w) R(a)^T (F(u, v) - c(a)),   a = path start,
 /// so V(u, v, a) = F(u, v). Fixed: R = I, which is Lasser's translation volume (Theorem 1) and

@@ -18,7 +18,8 @@ std::string object_location(const std::string& source_name, std::size_t index);
 /// The number of volume objects of `model`.
 std::size_t count_volumes(const Model& model);
 
-/// Calls `visit(index, object, volume)` for every volume object of `model`, in order.
+/// Calls `visit(index, object, volume)` for every volume object of `model`, in order. Curves,
+/// surfaces, hypervolumes and swept solids are skipped.
 /// \return the number of volumes visited (at least 1).
 /// \throw InvalidInput located at `source_name` if the model has no volume objects (before any
 /// call); an InvalidInput from `visit`, rethrown located at object_location(source_name, index);

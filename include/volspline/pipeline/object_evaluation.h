@@ -11,13 +11,13 @@ namespace volspline {
 
 /// The k coordinates of `object` at `t` (one value per parameter), followed with `derivatives`
 /// by its first partials, direction by direction (x_u y_u z_u x_v ...): k (D + 1) numbers.
-/// \throw InvalidInput if t has not one value per parameter or lies outside the domain.
+/// \throw InvalidInput for a swept solid, or if t has not one value per parameter or lies outside the domain.
 std::vector<double> evaluate_object_at(const ModelObject& object, const std::vector<double>& t, bool derivatives = false);
 
 /// The rows of evaluate_object_at on the grid of counts[d] evenly spaced samples per direction d,
 /// both ends included, the first direction fastest; evaluated by sum factorisation
 /// (TensorSpline::evaluate_grid), not point by point.
-/// \throw InvalidInput if counts has not one entry per parameter or an entry is < 2.
+/// \throw InvalidInput for a swept solid, or if counts has not one entry per parameter or an entry is < 2.
 std::vector<std::vector<double>> evaluate_object_on_grid(const ModelObject& object, const std::vector<int>& counts,
                                                          bool derivatives = false);
 

@@ -2,8 +2,8 @@
 // Tensor-product B-spline (and, as the special case of single-span clamped knot vectors,
 // Bézier) maps from a D-dimensional parameter box into R^k, polynomial or rational.
 // One template serves curves (D=1), surfaces (D=2) and volumes (D=3); D=4 is instantiated too,
-// for 4-variate maps such as a moving solid (no construction in volspline produces one yet; every
-// sweep here is a volume). Storage order and domain conventions: core/conventions.h.
+// for 4-variate maps: a swept solid's patches s(u, v, w, t) (construct/swept_solid.h). Storage
+// order and domain conventions: core/conventions.h.
 //
 // Rational splines are handled through their homogeneous form (Lasser 1994, eq. 4): every
 // algorithm works on the polynomial spline in R^{k+1} with coefficients (w x, w) and projects at
