@@ -188,6 +188,22 @@ RefinedSoup refine_soup(const std::vector<Eigen::Vector3d>& positions, const std
       const ExactPoint &oi = exact[static_cast<std::size_t>(other_i)], &oj = exact[static_cast<std::size_t>(other_j)];
       if (!CGAL::coplanar(e0, e1, oi, oj) || CGAL::coplanar_orientation(e0, e1, oi, oj) == CGAL::NEGATIVE) continue;
     }
+    // Sharing one corner, they meet only there when the other's two free corners lie strictly
+    // on one side of either's plane: decided by predicates alone, which matters because the
+    // constructions at a shared corner are degenerate and so evaluated exactly (slowly).
+    if (shared == 1) {
+      auto one_side = [&](std::size_t p, std::size_t q) {
+        std::array<CGAL::Orientation, 2> o{};
+        int k = 0;
+        for (int b = 0; b < 3; ++b) {
+          const int vq = triangles[q][static_cast<std::size_t>(b)];
+          if (std::find(triangles[p].begin(), triangles[p].end(), vq) != triangles[p].end()) continue;
+          o[static_cast<std::size_t>(k++)] = CGAL::orientation(tri[p].vertex(0), tri[p].vertex(1), tri[p].vertex(2), exact[static_cast<std::size_t>(vq)]);
+        }
+        return o[0] != CGAL::COPLANAR && o[0] == o[1];
+      };
+      if (one_side(i, j) || one_side(j, i)) continue;
+    }
     add_intersection(tri[i], tri[j], cuts[i], cuts[j]);
   }
   RefinedSoup out;

@@ -5,13 +5,14 @@
 #include <gtest/gtest.h>
 
 #include "volspline/construct/primitives.h"
+#include "volspline/construct/swept_examples.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
 namespace {
 
 // s(u, v, w, t) = (a u, b v, c w) + t D, degree 1 in every direction.
-BSplineHypervolume translated_box(const Eigen::Vector3d& size, const Eigen::Vector3d& d) {
+BSplineHypervolume translated_box_map(const Eigen::Vector3d& size, const Eigen::Vector3d& d) {
   std::vector<double> points;
   for (int l = 0; l < 2; ++l)
     for (int k = 0; k < 2; ++k)
@@ -41,23 +42,6 @@ bool in_translated_box_hull(const Eigen::Vector3d& x, const Eigen::Vector3d& siz
   return lo <= hi;
 }
 
-// The true point of a superset triangle at barycentric b: s at the interpolated (u, v, w, t).
-SupersetSurfacePoint surface_point_of(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& e) {
-  return [&patches, &e](std::size_t t, const Eigen::Vector3d& b) {
-    const auto& tri = e.mesh.triangles[t];
-    std::array<double, 4> p{};
-    for (int j = 0; j < 3; ++j) {
-      const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
-      for (int k = 0; k < 3; ++k) p[static_cast<std::size_t>(k)] += b[j] * e.mesh.parameters[v][k];
-      p[3] += b[j] * e.times[v];
-    }
-    const auto& s = patches[static_cast<std::size_t>(e.patches[static_cast<std::size_t>(tri[0])])];
-    for (int d = 0; d < 4; ++d) p[static_cast<std::size_t>(d)] = std::clamp(p[static_cast<std::size_t>(d)], s.domain_min(d), s.domain_max(d));
-    const Eigen::VectorXd x = s.evaluate(p);
-    return Eigen::Vector3d(x[0], x[1], x[2]);
-  };
-}
-
 // The box [1, 2] x [-1/2, 1/2] x [0, 1] turned a full revolution about z: four exact quarter
 // arcs in t, M_l g with M_l the rotation's control matrices.
 BSplineHypervolume revolving_box() {
@@ -78,25 +62,42 @@ BSplineHypervolume revolving_box() {
                             3, points, weights);
 }
 
-TEST(SweptEnvelope, RevolvingBoxIsAnAnnulus) {
+// The superset of the revolving box: the faces z = 0, 1 turn in their own planes (Jacobian
+// identically zero, skipped), and the only folds are where the faces x = 1 and x = 2 move
+// tangentially, y = 0: the cylinders r = 1 and r = 2.
+TEST(SweptEnvelope, RevolvingBoxFoldsOnTheCylindersOfItsFaceMidlines) {
   const std::vector<BSplineHypervolume> patches{revolving_box()};
   const SweptEnvelope superset = swept_envelope_superset(patches);
+  const SweptEnvelopeStats& st = superset.stats;
+  EXPECT_EQ(st.degenerate_three_faces, 2);
+  EXPECT_EQ(st.rank_deficient_triangles, 0);
+  EXPECT_EQ(st.cap_fold_triangles, 0);
+  ASSERT_GT(st.face_sweep_fold_triangles, 0);
   const double r_out = std::sqrt(4.25);
-  const TrimmedBoundary trimmed = trim_superset(superset.mesh, superset.times, surface_point_of(patches, superset), [&](const Eigen::Vector3d& x) {
-    const double r = std::hypot(x.x(), x.y());
-    return std::optional<bool>(r >= 1 && r <= r_out && x.z() >= 0 && x.z() <= 1);
-  });
-  const SupersetTrimmingStats& st = trimmed.stats;
-  std::cerr << "refine " << st.seconds_refine << " classify " << st.seconds_classify << " pieces " << st.pieces << " boundary " << st.pieces_boundary << " dup " << st.pieces_duplicate << " inside " << st.pieces_inside << " outside " << st.pieces_outside << " refined " << st.refined_triangles << " superset " << superset.mesh.num_triangles() << " degenerate3 " << superset.stats.degenerate_three_faces << " folds " << superset.stats.face_sweep_fold_triangles << "\n";
-  EXPECT_TRUE(st.closed) << st.boundary_edges << " boundary edges at " << st.open_at << ", " << st.nonmanifold_edges << " non-manifold";
-  EXPECT_TRUE(st.oriented);
-  EXPECT_TRUE(st.self_intersection_free) << st.self_intersecting_pairs;
-  const double exact = M_PI * (4.25 - 1);
-  EXPECT_NEAR(st.volume, exact, 1e-2 * exact);
+  for (std::size_t f = 0; f < superset.mesh.num_triangles(); ++f) {
+    for (int j = 0; j < 3; ++j) {
+      const auto v = static_cast<std::size_t>(superset.mesh.triangles[f][static_cast<std::size_t>(j)]);
+      const Eigen::Vector3d& x = superset.mesh.positions[v];
+      const double r = std::hypot(x.x(), x.y());
+      // Everything lies in the annulus; the folds on r = 1 or r = 2 to the tolerance.
+      EXPECT_GE(r, 1 - 1e-9);
+      EXPECT_LE(r, r_out + 1e-9);
+      EXPECT_GE(x.z(), -1e-12);
+      EXPECT_LE(x.z(), 1 + 1e-12);
+      // Fold vertices of the faces u = 0, 1 (x = 1, 2): u at its end, v and w inside.
+      if (superset.mesh.parts[f] == part_number(Part::SweepFace) &&
+          (superset.mesh.parameters[v][0] == 0 || superset.mesh.parameters[v][0] == 1) && superset.mesh.parameters[v][1] > 0 &&
+          superset.mesh.parameters[v][1] < 1 && superset.mesh.parameters[v][2] > 0 && superset.mesh.parameters[v][2] < 1) {
+        EXPECT_NEAR(r, superset.mesh.parameters[v][0] == 0 ? 1.0 : 2.0, 2e-3) << x.transpose();
+      }
+    }
+  }
 }
 
-// A ball of radius r moved by d: a capsule.
-TEST(SweptEnvelope, TranslatedBallIsACapsule) {
+// A ball of radius r moved by d: its generator does not fold (the centre and poles only touch
+// J = 0), so the superset has no rank-deficient part and no cap folds; the face sweep of the
+// sphere folds where d is tangent to it, on the cylinder of radius r about the segment.
+TEST(SweptEnvelope, TranslatedBallFoldsOnTheCapsulesCylinder) {
   const double r = 0.5;
   const Eigen::Vector3d d(1.2, 0.3, -0.2);
   const BSplineVolume g = ball(r);
@@ -110,24 +111,37 @@ TEST(SweptEnvelope, TranslatedBallIsACapsule) {
   const std::vector<BSplineHypervolume> patches{BSplineHypervolume(
       {g.knot_vector(0), g.knot_vector(1), g.knot_vector(2), KnotVector::bezier(1)}, 3, points, weights)};
   const SweptEnvelope superset = swept_envelope_superset(patches);
-  { const auto& q = superset.stats; std::cerr << "capfaces " << q.cap_face_triangles << " edges " << q.edge_sweep_triangles << " capfolds " << q.cap_fold_triangles << " facefolds " << q.face_sweep_fold_triangles << " rank " << q.rank_deficient_triangles << " rankcells " << q.rank_cells_examined << " kept " << q.rank_cells_kept << " t " << q.seconds_faces << " " << q.seconds_folds << " " << q.seconds_rank_deficient << " samples " << q.samples[0] << " " << q.samples[1] << " " << q.samples[2] << " " << q.samples[3] << "\n"; }
-  if (std::getenv("STOP")) return;
-  const TrimmedBoundary trimmed = trim_superset(superset.mesh, superset.times, surface_point_of(patches, superset), [&](const Eigen::Vector3d& x) {
-    const double t = std::clamp(x.dot(d) / d.squaredNorm(), 0.0, 1.0);
-    return std::optional<bool>((x - t * d).norm() <= r);
-  });
-  const SupersetTrimmingStats& st = trimmed.stats;
-  std::cerr << "refine " << st.seconds_refine << " classify " << st.seconds_classify << " pieces " << st.pieces << " boundary " << st.pieces_boundary << " dup " << st.pieces_duplicate << " inside " << st.pieces_inside << " outside " << st.pieces_outside << " undecided " << st.pieces_undecided << " refined " << st.refined_triangles << " superset " << superset.mesh.num_triangles() << " degenerate3 " << superset.stats.degenerate_three_faces << " folds " << superset.stats.face_sweep_fold_triangles << " capfolds " << superset.stats.cap_fold_triangles << " t " << superset.stats.seconds_total << "\n";
-  EXPECT_TRUE(st.closed) << st.boundary_edges << " boundary edges at " << st.open_at << ", " << st.nonmanifold_edges << " non-manifold";
-  EXPECT_TRUE(st.oriented);
-  EXPECT_TRUE(st.self_intersection_free) << st.self_intersecting_pairs;
-  const double exact = M_PI * r * r * d.norm() + 4.0 / 3 * M_PI * r * r * r;
-  EXPECT_NEAR(st.volume, exact, 1e-2 * exact);
+  const SweptEnvelopeStats& st = superset.stats;
+  EXPECT_EQ(st.rank_deficient_triangles, 0);
+  EXPECT_EQ(st.cap_fold_triangles, 0);
+  ASSERT_GT(st.face_sweep_fold_triangles, 0);
+  const double diagonal = 2 * r * std::sqrt(3.0) + d.norm();
+  std::size_t fold_vertices = 0;
+  for (std::size_t f = 0; f < superset.mesh.num_triangles(); ++f) {
+    for (int j = 0; j < 3; ++j) {
+      const auto v = static_cast<std::size_t>(superset.mesh.triangles[f][static_cast<std::size_t>(j)]);
+      const Eigen::Vector3d& x = superset.mesh.positions[v];
+      const double t = std::clamp(x.dot(d) / d.squaredNorm(), 0.0, 1.0);
+      const double distance = (x - t * d).norm();
+      EXPECT_LE(distance, r * (1 + 1e-9));  // the superset lies in the capsule
+      // Fold vertices of the sphere's sweep (u = 1, the other three parameters inside; the poles
+      // v = 0, 1 are degenerate: J vanishes there too, and their sheets map to the poles' paths):
+      // on the cylinder, to the tolerance.
+      const Eigen::Vector3d& p = superset.mesh.parameters[v];
+      const double tv = superset.times[v];
+      if (superset.mesh.parts[f] == part_number(Part::SweepFace) && p[0] == 1 && p[1] > 1e-9 && p[1] < 1 - 1e-9 && p[2] > 0 && p[2] < 1 &&
+          tv > 0 && tv < 1) {
+        ++fold_vertices;
+        EXPECT_NEAR(distance, r, 1e-3 * diagonal) << x.transpose() << " at " << p.transpose() << " " << tv;
+      }
+    }
+  }
+  EXPECT_GT(fold_vertices, 100u);
 }
 
 TEST(SweptEnvelope, TranslatedBoxIsTheHullOfItsEndPositions) {
   const Eigen::Vector3d size(1.0, 0.6, 0.4), d(0.7, 0.5, -0.3);
-  const BSplineHypervolume s = translated_box(size, d);
+  const BSplineHypervolume s = translated_box_map(size, d);
   SweptEnvelopeOptions options;
   const SweptEnvelope superset = swept_envelope_superset({s}, options);
   EXPECT_EQ(superset.stats.rank_deficient_triangles, 0);
@@ -148,7 +162,6 @@ TEST(SweptEnvelope, TranslatedBoxIsTheHullOfItsEndPositions) {
       },
       [&](const Eigen::Vector3d& x) { return std::optional<bool>(in_translated_box_hull(x, size, d)); });
   const SupersetTrimmingStats& st = trimmed.stats;
-  std::cerr << "refine " << st.seconds_refine << " classify " << st.seconds_classify << " checks " << st.seconds_checks << " pieces " << st.pieces << " refined " << st.refined_triangles << " superset " << superset.stats.seconds_total << "\n";
   EXPECT_TRUE(st.closed) << st.boundary_edges << " boundary edges at " << st.open_at;
   EXPECT_TRUE(st.oriented);
   EXPECT_TRUE(st.self_intersection_free) << st.self_intersecting_pairs;
@@ -163,6 +176,30 @@ TEST(SweptEnvelope, TranslatedBoxIsTheHullOfItsEndPositions) {
   for (const auto& x : trimmed.mesh.positions) {
     EXPECT_TRUE(in_translated_box_hull(x + 1e-9 * (centre - x), size, d)) << x.transpose();
     EXPECT_FALSE(in_translated_box_hull(x - 1e-9 * (centre - x), size, d)) << x.transpose();
+  }
+}
+
+// The whole pipeline on the library's swept solid: certified membership (SplineImage) instead
+// of the analytic one, the same exact hull.
+TEST(SweptEnvelope, TrimmedWithCertifiedMembershipTheTranslatedBoxIsItsHull) {
+  const Eigen::Vector3d size(0.8, 0.5, 0.6), d(-0.4, 0.9, 0.35);
+  const SweptEnvelope e = swept_envelope(swept_patches(translated_box(size, d)));
+  const SupersetTrimmingStats& st = e.stats.trimming;
+  EXPECT_TRUE(st.closed) << st.boundary_edges << " boundary edges at " << st.open_at;
+  EXPECT_TRUE(st.oriented);
+  EXPECT_TRUE(st.self_intersection_free);
+  EXPECT_EQ(st.components, 1);
+  EXPECT_EQ(st.pieces_undecided, 0);
+  const double exact = size.prod() + std::abs(d.x()) * size.y() * size.z() + std::abs(d.y()) * size.x() * size.z() +
+                       std::abs(d.z()) * size.x() * size.y();
+  EXPECT_NEAR(enclosed_volume(e.mesh), exact, 1e-9 * exact);
+  ASSERT_EQ(e.times.size(), e.mesh.num_vertices());
+  // Tags: every vertex's (u, v, w, t) maps to it.
+  const auto patches = swept_patches(translated_box(size, d));
+  for (std::size_t v = 0; v < e.mesh.num_vertices(); ++v) {
+    const auto& p = e.mesh.parameters[v];
+    const Eigen::VectorXd x = patches[0].evaluate({p[0], p[1], p[2], e.times[v]});
+    EXPECT_LE((Eigen::Vector3d(x[0], x[1], x[2]) - e.mesh.positions[v]).norm(), 1e-12);
   }
 }
 

@@ -1,0 +1,165 @@
+// volspline sweep-envelope S.json -o OUT.(ply|obj|stl|glb) [--tol T] [--bounds bezier|cone]
+//   [--superset] [--stats S.json] [--png P.png]: the boundary of the volume a swept solid sweeps
+//   (extract/swept_envelope.h, docs/envelopes.md).
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
+#include "commands.h"
+#include "progress_bar.h"
+#include "volspline/construct/swept_solid.h"
+#include "volspline/core/error.h"
+#include "volspline/extract/swept_envelope.h"
+#include "volspline/io/atomic_file.h"
+#include "volspline/io/model_volumes.h"
+#include "volspline/mesh/mesh_writer.h"
+
+namespace volspline::cli {
+
+namespace {
+
+struct SweepEnvelopeArguments {
+  std::shared_ptr<ModelInput> input;
+  std::string out, bounds = "bezier", stats, png, size = "800,600";
+  double tol = 1e-3;
+  std::int64_t max_cells = 2000000;
+  bool superset = false;
+};
+
+nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
+  nlohmann::json j = {
+      {"superset_triangles",
+       {{"cap_faces", s.cap_face_triangles},
+        {"edge_sweeps", s.edge_sweep_triangles},
+        {"cap_folds", s.cap_fold_triangles},
+        {"face_sweep_folds", s.face_sweep_fold_triangles},
+        {"rank_deficient", s.rank_deficient_triangles}}},
+      {"three_faces_degenerate", s.degenerate_three_faces},
+      {"three_faces_without_fold", s.fold_free_three_faces},
+      {"fold_cells_examined", s.cells_examined},
+      {"fold_cells_kept", s.cells_kept},
+      {"rank_cells_examined", s.rank_cells_examined},
+      {"rank_cells_kept", s.rank_cells_kept},
+      {"budget_reached", s.budget_reached},
+      {"samples", s.samples},
+      {"seconds", {{"faces", s.seconds_faces}, {"folds", s.seconds_folds}, {"rank_deficient", s.seconds_rank_deficient}, {"total", s.seconds_total}}}};
+  if (trimmed) {
+    const SupersetTrimmingStats& t = s.trimming;
+    j["trimming"] = {{"refined_triangles", t.refined_triangles},
+                     {"pieces", t.pieces},
+                     {"pieces_boundary", t.pieces_boundary},
+                     {"pieces_inside", t.pieces_inside},
+                     {"pieces_outside", t.pieces_outside},
+                     {"pieces_duplicate", t.pieces_duplicate},
+                     {"pieces_undecided", t.pieces_undecided},
+                     {"membership_queries", t.membership_queries},
+                     {"seconds", {{"refine", t.seconds_refine}, {"classify", t.seconds_classify}, {"checks", t.seconds_checks}}}};
+    j["closed"] = t.closed;
+    j["oriented"] = t.oriented;
+    j["self_intersection_free"] = t.self_intersection_free;
+    j["self_intersecting_pairs"] = t.self_intersecting_pairs;
+    j["boundary_edges"] = t.boundary_edges;
+    j["nonmanifold_edges"] = t.nonmanifold_edges;
+    j["components"] = t.components;
+    j["volume"] = t.volume;
+    if (!t.open_at.empty()) j["open_at"] = t.open_at;
+  }
+  return j;
+}
+
+void run_sweep_envelope(const SweepEnvelopeArguments& a) {
+  const MeshFormat format = mesh_format_from_path(a.out);
+  if (!a.png.empty() && std::filesystem::path(a.png).extension() != ".png")
+    throw InvalidInput("expected a file name ending in .png, got '" + a.png + "'", "--png");
+  const auto wh = parse_integers(a.size, 2, 16, "--size");
+  if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + a.size + "'", "--size");
+  if (!(a.tol > 0 && a.tol < 0.5)) throw InvalidInput("expected a number in (0, 0.5)", "--tol");
+  SweptEnvelopeOptions options;
+  options.tolerance = a.tol;
+  options.max_cells = a.max_cells;
+  options.trim = !a.superset;
+  if (a.bounds == "bezier") options.bounds = JacobianBoundMethod::Bezier;
+  else if (a.bounds == "cone") options.bounds = JacobianBoundMethod::Cone;
+  else throw InvalidInput("expected 'bezier' or 'cone', got '" + a.bounds + "'", "--bounds");
+  options.progress = command_progress();
+  const Model model = [&] {
+    const ProgressPhase phase(options.progress, "reading");
+    return a.input->read();
+  }();
+  TriangleMesh mesh;
+  nlohmann::json stats = {{"objects", nlohmann::json::array()}};
+  bool open = false;
+  std::size_t solids = 0;
+  for (std::size_t i = 0; i < model.objects.size(); ++i) {
+    if (!is_swept_solid(model.objects[i])) continue;
+    ++solids;
+    const SweptSolid& solid = std::get<SweptSolid>(model.objects[i].spline);
+    const SweptEnvelope e = [&] {
+      try {
+        return swept_envelope(swept_patches(solid), options);
+      } catch (const InvalidInput& error) {
+        throw InvalidInput(std::string(error.what()), object_location(a.input->path, i));
+      }
+    }();
+    mesh.append(e.mesh);
+    nlohmann::json s = envelope_stats(e.stats, options.trim);
+    s["object"] = i;
+    stats["objects"].push_back(s);
+    const auto& t = e.stats.trimming;
+    std::cout << "object " << i << ": " << e.mesh.num_triangles() << " triangles";
+    if (options.trim) {
+      std::cout << ", " << t.pieces << " pieces (" << t.pieces_boundary << " on the boundary, " << t.pieces_inside << " inside, "
+                << t.pieces_duplicate << " duplicate), volume " << std::setprecision(6) << t.volume << ", "
+                << (t.closed ? "closed" : "open") << (t.oriented ? ", oriented" : "")
+                << (t.self_intersection_free ? ", no self-intersections" : ", self-intersecting");
+      if (!t.closed || !t.self_intersection_free) open = true;
+    }
+    std::cout << ", " << std::setprecision(3) << e.stats.seconds_total << " s\n";
+    if (!t.open_at.empty()) std::cout << "  open at " << t.open_at << "\n";
+  }
+  if (solids == 0)
+    throw InvalidInput(a.input->path + " has no swept_solid object (make one with `volspline make swept-solid`)", "objects");
+  RenderOptions render;
+  render.width = wh[0];
+  render.height = wh[1];
+  std::unique_ptr<AtomicFile> stats_file;
+  if (!a.stats.empty()) {
+    stats_file = std::make_unique<AtomicFile>(a.stats, false);
+    stats_file->stream() << stats.dump(2) << "\n";
+  }
+  {
+    const ProgressPhase phase(options.progress, "writing");
+    write_mesh_and_picture(mesh, a.out, format, false, a.png, render);
+    if (stats_file) stats_file->commit();
+  }
+  if (open)
+    std::cerr << "volspline: warning: the trimmed envelope is not a closed, self-intersection-free surface (see above and "
+                 "docs/envelopes.md, \"Limits\")\n";
+  std::cout << "wrote " << a.out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles\n";
+  if (!a.png.empty()) std::cout << "wrote " << a.png << "\n";
+  if (stats_file) std::cout << "wrote " << a.stats << "\n";
+}
+
+}  // namespace
+
+void add_sweep_envelope_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("sweep-envelope",
+                                 "The boundary of the volume a swept solid sweeps (Conkey–Joy 2000), trimmed to the true boundary: "
+                                 "caps (part 13), face and edge sweeps (part 14), the rank-deficient set (part 15)");
+  auto a = std::make_shared<SweepEnvelopeArguments>();
+  a->input = add_model_input(cmd);
+  cmd->add_option("-o,--output", a->out, "mesh file: .ply (x y z u v w, face part), .obj, .stl or .glb")->required();
+  cmd->add_option("--tol", a->tol, "tolerance relative to the bounding-box diagonal (default 1e-3)");
+  cmd->add_option("--max-cells", a->max_cells, "budget of cells per subdivision (default 2000000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
+  cmd->add_option("--bounds", a->bounds, "bezier (certified Bernstein coefficients, default) or cone (the paper's cone bounds)");
+  cmd->add_flag("--superset", a->superset, "write the paper's untrimmed superset instead of the true boundary");
+  cmd->add_option("--stats", a->stats, "write statistics as JSON");
+  cmd->add_option("--png", a->png, "also render a picture (parts coloured by source)");
+  cmd->add_option("--size", a->size, "picture size W,H in pixels (default 800,600)");
+  cmd->callback([a] { run_sweep_envelope(*a); });
+}
+
+}  // namespace volspline::cli
