@@ -80,9 +80,15 @@ TEST(SubJacobians, SignCertificateForAStrictSignAndHullForASeparatedSet) {
   // The origin between two coefficient vectors: no certificate can exist.
   minors.coefficients = {1.0, 0.5, 0, 0, -1.0, -0.5, 0, 0};
   EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::None);
-  // A coefficient inside the margin is not a sign.
+  // A coefficient inside the margin is not a strict sign; of J123 it is a weak one: no fold.
   minors.coefficients = {1.0, 0, 0, 0, 1e-13, 0, 0, 0};
-  EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::None);
+  EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::NoFold);
+  minors.coefficients = {1.0, 0, 0, 0, -1e-13, 0, 0, 0};
+  EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::NoFold);
+  // Of another minor it is no sign at all: J123 changes sign, J124 is 1 and 1e-13, and the
+  // separating direction found proves it by the hull.
+  minors.coefficients = {1.0, 1.0, 0, 0, -1.0, 1e-13, 0, 0};
+  EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::Hull);
 }
 
 TEST(SubJacobians, ConeCertificateProvesAnUnfoldedGenerator) {
