@@ -127,19 +127,7 @@ void run_boundary(const BoundaryArguments& a) {
   render.width = wh[0];
   render.height = wh[1];
   // Everything is prepared before anything is committed: stats, mesh and picture appear together.
-  std::unique_ptr<AtomicFile> stats_file;
-  if (!a.stats.empty()) {
-    stats_file = std::make_unique<AtomicFile>(a.stats, false);
-    stats_file->stream() << stats.dump(2) << "\n";
-  }
-  {
-    const ProgressPhase phase(options.progress, "writing");
-    write_mesh_and_picture(mesh, a.out, format, false, a.png, render);
-    if (stats_file) stats_file->commit();
-  }
-  std::cout << "wrote " << a.out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles\n";
-  if (!a.png.empty()) std::cout << "wrote " << a.png << "\n";
-  if (stats_file) std::cout << "wrote " << a.stats << "\n";
+  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, stats.dump(2), a.stats, options.progress);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <charconv>
+#include <iostream>
 #include <optional>
 #include <cmath>
 #include <sstream>
@@ -77,6 +78,24 @@ void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, Me
   }
   mesh_file.commit();
   if (png_file) png_file->commit();
+}
+
+void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& out, MeshFormat format, const std::string& png,
+                                  const RenderOptions& options, const std::string& stats_text, const std::string& stats_path,
+                                  Progress* progress) {
+  std::optional<AtomicFile> stats_file;
+  if (!stats_path.empty()) {
+    stats_file.emplace(stats_path, false);
+    stats_file->stream() << stats_text << "\n";
+  }
+  {
+    const ProgressPhase phase(progress, "writing");
+    write_mesh_and_picture(mesh, out, format, false, png, options);
+    if (stats_file) stats_file->commit();
+  }
+  std::cout << "wrote " << out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles\n";
+  if (!png.empty()) std::cout << "wrote " << png << "\n";
+  if (stats_file) std::cout << "wrote " << stats_path << "\n";
 }
 
 int parse_direction(const std::string& text, const std::string& option) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "volspline/core/progress.h"
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/mesh_writer.h"
 #include "volspline/render/mesh_renderer.h"
@@ -35,6 +36,11 @@ int parameter_count(const ModelObject& object);
 /// prepared and opened before either is committed, so a failure on one leaves neither behind.
 void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, MeshFormat format, bool ascii,
                             const std::string& png, const RenderOptions& options);
+/// Writes `stats_text` to `stats_path` (unless empty), `mesh` and its picture as
+/// write_mesh_and_picture, all prepared before any is committed, and prints what it wrote.
+void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& out, MeshFormat format, const std::string& png,
+                                  const RenderOptions& options, const std::string& stats_text, const std::string& stats_path,
+                                  Progress* progress);
 /// Formats numbers with 17 significant digits separated by spaces.
 std::string join_numbers(const double* values, std::size_t count);
 

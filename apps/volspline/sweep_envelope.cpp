@@ -125,22 +125,10 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   RenderOptions render;
   render.width = wh[0];
   render.height = wh[1];
-  std::unique_ptr<AtomicFile> stats_file;
-  if (!a.stats.empty()) {
-    stats_file = std::make_unique<AtomicFile>(a.stats, false);
-    stats_file->stream() << stats.dump(2) << "\n";
-  }
-  {
-    const ProgressPhase phase(options.progress, "writing");
-    write_mesh_and_picture(mesh, a.out, format, false, a.png, render);
-    if (stats_file) stats_file->commit();
-  }
+  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, stats.dump(2), a.stats, options.progress);
   if (open)
     std::cerr << "volspline: warning: the trimmed envelope is not a closed, self-intersection-free surface (see above and "
                  "docs/envelopes.md, \"Limits\")\n";
-  std::cout << "wrote " << a.out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles\n";
-  if (!a.png.empty()) std::cout << "wrote " << a.png << "\n";
-  if (stats_file) std::cout << "wrote " << a.stats << "\n";
 }
 
 }  // namespace

@@ -260,26 +260,29 @@ SweptEnvelope swept_envelope_superset(const std::vector<BSplineHypervolume>& pat
   return out;
 }
 
+Eigen::Vector3d swept_envelope_point(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& envelope,
+                                     std::size_t triangle, const Eigen::Vector3d& barycentric) {
+  const auto& tri = envelope.mesh.triangles.at(triangle);
+  std::array<double, 4> p{};
+  for (int j = 0; j < 3; ++j) {
+    const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
+    for (int k = 0; k < 3; ++k) p[static_cast<std::size_t>(k)] += barycentric[j] * envelope.mesh.parameters[v][k];
+    p[3] += barycentric[j] * envelope.times[v];
+  }
+  const auto& s = patches.at(static_cast<std::size_t>(envelope.patches[static_cast<std::size_t>(tri[0])]));
+  for (int d = 0; d < 4; ++d) p[static_cast<std::size_t>(d)] = std::clamp(p[static_cast<std::size_t>(d)], s.domain_min(d), s.domain_max(d));
+  Eigen::Vector3d x;
+  s.evaluate(p, x.data());
+  return x;
+}
+
 SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {
   SweptEnvelope superset = swept_envelope_superset(patches, options);
   if (!options.trim) return superset;
   const auto start = Clock::now();
   const SplineImage<4> image(patches);
-  // The true point of a superset triangle: s at its interpolated (u, v, w, t), on the patch of
-  // its first vertex (a triangle never spans patches).
   const SupersetSurfacePoint surface_point = [&](std::size_t t, const Eigen::Vector3d& b) {
-    const auto& tri = superset.mesh.triangles[t];
-    std::array<double, 4> p{};
-    for (int j = 0; j < 3; ++j) {
-      const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
-      for (int k = 0; k < 3; ++k) p[static_cast<std::size_t>(k)] += b[j] * superset.mesh.parameters[v][k];
-      p[3] += b[j] * superset.times[v];
-    }
-    const auto& s = patches[static_cast<std::size_t>(superset.patches[static_cast<std::size_t>(tri[0])])];
-    for (int d = 0; d < 4; ++d) p[static_cast<std::size_t>(d)] = std::clamp(p[static_cast<std::size_t>(d)], s.domain_min(d), s.domain_max(d));
-    Eigen::Vector3d x;
-    s.evaluate(p, x.data());
-    return x;
+    return swept_envelope_point(patches, superset, t, b);
   };
   const ImageMembershipTest inside = [&](const Eigen::Vector3d& x) -> std::optional<bool> {
     switch (image.classify(x)) {

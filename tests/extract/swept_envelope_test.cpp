@@ -149,17 +149,7 @@ TEST(SweptEnvelope, TranslatedBoxIsTheHullOfItsEndPositions) {
   EXPECT_GT(superset.stats.edge_sweep_triangles, 0);
   const TrimmedBoundary trimmed = trim_superset(
       superset.mesh, superset.times,
-      [&](std::size_t t, const Eigen::Vector3d& b) {
-        const auto& tri = superset.mesh.triangles[t];
-        std::array<double, 4> p{};
-        for (int j = 0; j < 3; ++j) {
-          const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
-          for (int k = 0; k < 3; ++k) p[static_cast<std::size_t>(k)] += b[j] * superset.mesh.parameters[v][k];
-          p[3] += b[j] * superset.times[v];
-        }
-        const Eigen::VectorXd x = s.evaluate(p);
-        return Eigen::Vector3d(x[0], x[1], x[2]);
-      },
+      [&](std::size_t t, const Eigen::Vector3d& b) { return swept_envelope_point({s}, superset, t, b); },
       [&](const Eigen::Vector3d& x) { return std::optional<bool>(in_translated_box_hull(x, size, d)); });
   const SupersetTrimmingStats& st = trimmed.stats;
   EXPECT_TRUE(st.closed) << st.boundary_edges << " boundary edges at " << st.open_at;

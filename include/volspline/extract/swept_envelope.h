@@ -84,6 +84,12 @@ struct SweptEnvelope {
 SweptEnvelope swept_envelope_superset(const std::vector<BSplineHypervolume>& patches,
                                       const SweptEnvelopeOptions& options = {});
 
+/// The point of the envelope's sheet under `triangle` at `barycentric`: s at the interpolated
+/// (u, v, w, t) on the patch of the triangle's first vertex (clamped to the domain). \throw
+/// std::out_of_range for a triangle or patch that does not exist.
+Eigen::Vector3d swept_envelope_point(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& envelope,
+                                     std::size_t triangle, const Eigen::Vector3d& barycentric);
+
 /// The superset trimmed to the boundary of the union of the patches' images (options.trim), or
 /// the superset (!options.trim). \throw as swept_envelope_superset.
 SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options = {});
