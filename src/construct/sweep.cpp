@@ -133,7 +133,10 @@ TensorSpline<D + 1> sweep_profile(const TensorSpline<D>& profile, const BSplineC
   const std::array<const BSplineCurve*, 4> curves{&frame[0], &frame[1], &frame[2], &path};
   const auto [breaks, smoothness] = merged_breakpoints({curves.begin(), curves.end()});
   const FrameMatrix m = frame_matrix(curves, breaks);
-  auto [k_sweep, mk] = to_bspline(m.entries, breaks, smoothness);
+  // Named, not a structured binding: clang 14 (the fuzz build) does not let a lambda capture one.
+  auto sweep_spline = to_bspline(m.entries, breaks, smoothness);
+  KnotVector& k_sweep = sweep_spline.first;
+  const auto& mk = sweep_spline.second;
   const bool rational = profile.is_rational() || m.rational;
   std::array<KnotVector, D + 1> knots = [&]<std::size_t... I>(std::index_sequence<I...>) {
     return std::array<KnotVector, D + 1>{profile.knot_vector(static_cast<int>(I))..., std::move(k_sweep)};
