@@ -105,7 +105,13 @@ int parse_direction(const std::string& text, const std::string& option) {
   throw InvalidInput("expected a direction u, v or w, got '" + text + "'", option);
 }
 
-int parameter_count(const ModelObject& object) { return static_cast<int>(object.spline.index()) + 1; }
+int parameter_count(const ModelObject& object) {
+  // A swept solid has the four parameters of its patches; a simplex spline volume is evaluated
+  // at points x, y, z of its domain.
+  if (is_swept_solid(object)) return 4;
+  if (is_simplex_spline_volume(object)) return 3;
+  return static_cast<int>(object.spline.index()) + 1;
+}
 
 std::string join_numbers(const double* values, std::size_t count) {
   std::string s;

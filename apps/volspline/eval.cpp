@@ -32,22 +32,27 @@ std::vector<std::vector<double>> evaluate_rows(const ModelObject& object, const 
     if (requested > 5e7) throw InvalidInput("expected at most 50 million grid points, got '" + r.grid + "'", "--grid");
     rows = evaluate_object_on_grid(object, n, r.derivatives);
   }
-  for (std::size_t i = 0; i < r.at.size(); ++i) {
-    const std::string where = r.location + " at --at[" + std::to_string(i) + "]";
-    const auto t = parse_numbers(r.at[i], parameters, where);
-    try {
-      rows.push_back(evaluate_object_at(object, t, r.derivatives));
-    } catch (const InvalidInput& e) {
-      throw e.located(where);
-    }
+  std::vector<std::vector<double>> points;
+  for (std::size_t i = 0; i < r.at.size(); ++i)
+    points.push_back(parse_numbers(r.at[i], parameters, r.location + " at --at[" + std::to_string(i) + "]"));
+  std::vector<std::vector<double>> at_rows;
+  try {
+    at_rows = evaluate_object_at_each(object, points, r.derivatives);
+  } catch (const InvalidInput& e) {
+    // "points[i]: ..." becomes "FILE: objects[k] at --at[i]: ...".
+    const std::string& where = e.where();
+    const std::string index = where.rfind("points[", 0) == 0 ? where.substr(6, where.find(']') - 5) : "";
+    throw InvalidInput(e.message(), r.location + " at --at" + index);
   }
+  rows.insert(rows.end(), std::make_move_iterator(at_rows.begin()), std::make_move_iterator(at_rows.end()));
   return rows;
 }
 
 }  // namespace
 
 void add_eval_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("eval", "Evaluate an object at parameter points or on a regular grid; prints one line per point, x y z [then xu yu zu xv yv zv xw yw zw]");
+  auto* cmd = app.add_subcommand("eval", "Evaluate an object at parameter points or on a regular grid; prints one line per point, x y z [then xu yu zu xv yv zv xw yw zw]; "
+      "a simplex_spline_volume at points X,Y,Z of its domain: x y z, then each attribute [then their derivatives along x, y, z], all 0 outside the domain");
   auto r = std::make_shared<EvalRequest>();
   const auto input = add_model_input(cmd);
   cmd->add_option("--at", r->at, "a parameter point U,V,W (as many numbers as the object has parameters); repeatable")->take_all();
@@ -64,7 +69,8 @@ void add_eval_command(CLI::App& app) {
                          "--object");
     const auto& object = model.objects[r->object];
     r->location = object_location(input->path, r->object);
-    const int k = visit_spline(object, "eval", r->location, [](const auto& s) { return s.dimension(); });
+    const auto* simplex = std::get_if<DmsSplineVolume>(&object.spline);
+    const int k = simplex ? simplex->dimension() : visit_spline(object, "eval", r->location, [](const auto& s) { return s.dimension(); });
     const auto rows = evaluate_rows(object, *r);
     if (r->json) {
       nlohmann::json out;

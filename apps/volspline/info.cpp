@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "volspline/analysis/mass_properties.h"
 #include "volspline/core/format.h"
+#include "volspline/mesh/tetrahedral_mesh.h"
 #include "volspline/spline/affine_map.h"
 
 namespace volspline::cli {
@@ -40,6 +41,27 @@ nlohmann::json describe(const SweptSolid& s) {
   j["path"] = describe(s.path);
   j["frame"] = s.frame_name;
   j["frame_fit_error"] = s.frame_fit_error;
+  return j;
+}
+
+// A simplex spline volume (Hua–He–Qin): its domain, knot clouds, control vectors and attributes.
+nlohmann::json describe(const DmsSplineVolume& s) {
+  nlohmann::json j;
+  j["degree"] = s.degree();
+  j["domain_points"] = s.domain().points.size();
+  j["tetrahedra"] = s.domain().tetrahedra.size();
+  j["knots"] = s.knots().knots.size();
+  j["domain_volume"] = tetrahedral_mesh_volume(s.domain());
+  j["control"] = s.sharing() == DmsControlSharing::Shared ? "shared" : "per_tetrahedron";
+  j["control_points"] = s.control_vector_count();
+  j["attributes"] = s.attribute_names();
+  const Eigen::MatrixXd& c = s.control_vectors();
+  const Eigen::Vector3d lo = c.leftCols<3>().colwise().minCoeff().transpose(), hi = c.leftCols<3>().colwise().maxCoeff().transpose();
+  j["control_box"] = {{"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}};
+  for (std::size_t a = 0; a < s.attribute_names().size(); ++a) {
+    const auto column = c.col(static_cast<Eigen::Index>(3 + a));
+    j["attribute_ranges"][s.attribute_names()[a]] = {column.minCoeff(), column.maxCoeff()};
+  }
   return j;
 }
 
@@ -123,6 +145,19 @@ void add_info_command(CLI::App& app) {
     for (const auto& j : out["objects"]) {
       std::cout << "object " << j["index"].get<std::size_t>() << ": " << j["type"].get<std::string>();
       if (j.contains("name")) std::cout << " \"" << j["name"].get<std::string>() << "\"";
+      if (j.contains("tetrahedra")) {
+        std::cout << "\n  degree          " << j["degree"].get<int>() << "\n  domain          " << j["tetrahedra"].get<std::size_t>()
+                  << " tetrahedra on " << j["domain_points"].get<std::size_t>() << " points, volume "
+                  << format_double(j["domain_volume"].get<double>()) << "\n  knots           " << j["knots"].get<std::size_t>() << " ("
+                  << j["degree"].get<int>() + 1 << " per point)\n  control points  " << j["control_points"].get<int>() << " ("
+                  << j["control"].get<std::string>() << "), in " << numbers(j["control_box"]["min"]) << " .. "
+                  << numbers(j["control_box"]["max"]) << "\n";
+        for (const auto& name : j["attributes"])
+          std::cout << "  attribute       " << name.get<std::string>() << " in ["
+                    << format_double(j["attribute_ranges"][name.get<std::string>()][0].get<double>()) << ", "
+                    << format_double(j["attribute_ranges"][name.get<std::string>()][1].get<double>()) << "]\n";
+        continue;
+      }
       if (j.contains("generator_patches")) {
         std::cout << "\n  generator       " << j["generator_patches"].get<std::size_t>() << " volume patch(es)"
                   << "\n  path            degree " << j["path"]["degree"][0].get<int>() << ", " << j["path"]["knot_spans"][0].get<int>()

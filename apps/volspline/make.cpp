@@ -263,6 +263,7 @@ void add_make_command(CLI::App& app) {
   add_sweep_kind(make);
   add_joy_duchaineau_kinds(make);
   add_make_swept_solid_kind(make);
+  add_make_simplex_spline_kind(make);
 }
 
 }  // namespace volspline::cli

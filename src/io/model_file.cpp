@@ -16,16 +16,15 @@
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/strict_json.h"
 #include "volspline/spline/attribute_spline.h"
+#include "model_json_support.h"
+#include "simplex_spline_json.h"
 
 namespace volspline {
 
 namespace {
 
 using nlohmann::json;
-
-[[noreturn]] void fail(const std::string& expected, const json& got, const std::string& path) {
-  throw InvalidInput("expected " + expected + ", got " + describe_json_value(got), path);
-}
+using namespace model_json;
 
 // ------------------------------------------------------------------------------------------
 // Interpreting the DOM.
@@ -53,43 +52,6 @@ constexpr const char* kSweptSolidType = "swept_solid";
 // so its cost is bounded by bounding the path (a larger one is fitted by `make swept-solid`, which
 // stores the fitted curves).
 constexpr int kMaxFittedPathSpans = 64;
-
-void check_keys(const json& object, const std::string& path, std::initializer_list<const char*> allowed) {
-  for (const auto& item : object.items()) {
-    const std::string& key = item.key();
-    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) {
-      std::string list;
-      for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      throw InvalidInput("unknown key " + json_quoted(key) + ": expected one of " + list +
-                             " (free-form data belongs under \"metadata\")",
-                         json_key_path(path, key));
-    }
-  }
-}
-
-const json& required(const json& object, const char* key, const std::string& path, const std::string& what) {
-  const auto it = object.find(key);
-  if (it == object.end()) {
-    throw InvalidInput("missing key \"" + std::string(key) + "\" (" + what + ")", path);
-  }
-  return *it;
-}
-
-double number(const json& value, const std::string& path) {
-  if (!value.is_number()) fail("a number", value, path);
-  const double x = value.get<double>();
-  // The parser rejects overflowing literals already; this guards every other route.
-  if (!std::isfinite(x)) fail("a finite number", value, path);
-  return x;
-}
-
-std::vector<double> numbers(const json& value, const std::string& path, const std::string& what) {
-  if (!value.is_array()) fail(what, value, path);
-  std::vector<double> out;
-  out.reserve(value.size());
-  for (std::size_t i = 0; i < value.size(); ++i) out.push_back(number(value[i], json_index_path(path, i)));
-  return out;
-}
 
 json metadata(const json& object, const std::string& path) {
   const auto it = object.find("metadata");
@@ -246,6 +208,7 @@ int control_point_count(const SplineObject& spline) {
   return std::visit(
       [](const auto& s) {
         if constexpr (std::is_same_v<std::decay_t<decltype(s)>, SweptSolid>) return 0;
+        else if constexpr (std::is_same_v<std::decay_t<decltype(s)>, DmsSplineVolume>) return s.control_vector_count();
         else return s.num_control_points_total();
       },
       spline);
@@ -258,11 +221,13 @@ std::string type_names(std::size_t count) {
   return names;
 }
 std::string other_type_names() {
-  return type_names(kTypes.size()).substr(type_names(kClassicTypes).size() + 2) + ", " + kSweptSolidType;
+  return type_names(kTypes.size()).substr(type_names(kClassicTypes).size() + 2) + ", " + kSweptSolidType + ", " +
+         kSimplexSplineVolumeType;
 }
 
 const TypeInfo& spline_type(const json& object, const std::string& path) {
-  const json& type_json = required(object, "type", path, "one of " + type_names(kTypes.size()) + ", " + kSweptSolidType);
+  const json& type_json =
+      required(object, "type", path, "one of " + type_names(kTypes.size()) + ", " + kSweptSolidType + ", " + kSimplexSplineVolumeType);
   const std::string type_path = json_key_path(path, "type");
   const std::string others = " (or " + other_type_names() + ")";
   if (!type_json.is_string()) throw InvalidInput("expected a type name (one of " + type_names(kClassicTypes) + others + "), got " +
@@ -399,6 +364,17 @@ ModelObject read_object(const json& object, const std::string& path) {
   if (!object.is_object()) fail("an object (a curve, surface, volume, hypervolume or swept solid)", object, path);
   const auto type_it = object.find("type");
   const bool swept = type_it != object.end() && type_it->is_string() && type_it->get_ref<const std::string&>() == kSweptSolidType;
+  const bool simplex =
+      type_it != object.end() && type_it->is_string() && type_it->get_ref<const std::string&>() == kSimplexSplineVolumeType;
+  if (simplex) {
+    std::string name;
+    if (const auto it = object.find("name"); it != object.end()) {
+      if (!it->is_string()) fail("a string", *it, json_key_path(path, "name"));
+      name = it->get<std::string>();
+    }
+    json object_metadata = metadata(object, path);
+    return ModelObject{std::move(name), false, read_simplex_spline_volume(object, path), std::move(object_metadata)};
+  }
   if (!swept) check_keys(object, path, {"name", "type", "degree", "knots", "control_points", "weights", "attributes", "metadata"});
 
   const TypeInfo* type = swept ? nullptr : &spline_type(object, path);
@@ -443,62 +419,6 @@ Model read_document(const json& root) {
 
 // ------------------------------------------------------------------------------------------
 // Writing.
-
-/// A number as written: 17 significant digits, and "-0.0" for negative zero (a JSON reader
-/// takes "-0" for the integer 0).
-std::string number_text(double value) {
-  std::string text = format_double(value);
-  if (value == 0.0 && std::signbit(value)) text = "-0.0";
-  return text;
-}
-
-/// "[a, b, c]" on one line if it fits in kLineWidth characters, else wrapped at that width.
-void write_numbers(std::ostringstream& out, const double* values, std::size_t count, const std::string& indent) {
-  constexpr std::size_t kLineWidth = 100;
-  std::vector<std::string> texts;
-  std::size_t total = indent.size() + 2;
-  for (std::size_t i = 0; i < count; ++i) {
-    texts.push_back(number_text(values[i]));
-    total += texts.back().size() + 2;
-  }
-  if (total <= kLineWidth) {
-    out << '[';
-    for (std::size_t i = 0; i < count; ++i) out << (i ? ", " : "") << texts[i];
-    out << ']';
-    return;
-  }
-  out << "[\n" << indent << "  ";
-  std::size_t column = indent.size() + 2;
-  for (std::size_t i = 0; i < count; ++i) {
-    if (i > 0) {
-      if (column + 2 + texts[i].size() + 1 > kLineWidth) {
-        out << ",\n" << indent << "  ";
-        column = indent.size() + 2;
-      } else {
-        out << ", ";
-        column += 2;
-      }
-    }
-    out << texts[i];
-    column += texts[i].size();
-  }
-  out << '\n' << indent << ']';
-}
-
-std::string json_text(const json& value, const std::string& path, const std::string& indent, bool pretty) {
-  std::string text;
-  try {
-    text = value.dump(pretty ? 2 : -1, ' ', false, json::error_handler_t::strict);
-  } catch (const json::exception&) {
-    throw InvalidInput("expected text in UTF-8, got invalid UTF-8", path);
-  }
-  std::string indented;
-  for (char c : text) {
-    indented += c;
-    if (c == '\n') indented += indent;
-  }
-  return indented;
-}
 
 void write_metadata(std::ostringstream& out, const json& metadata, const std::string& path, const std::string& indent) {
   if (!metadata.is_object()) fail("a JSON object or null", metadata, path);
@@ -613,6 +533,8 @@ std::string object_type_name(const ModelObject& object) {
       [&](const auto& spline) {
         if constexpr (std::is_same_v<std::decay_t<decltype(spline)>, SweptSolid>) {
           return std::string(kSweptSolidType);
+        } else if constexpr (std::is_same_v<std::decay_t<decltype(spline)>, DmsSplineVolume>) {
+          return std::string(kSimplexSplineVolumeType);
         } else {
           bool bezier = object.bezier;
           for (const KnotVector& kv : spline.knot_vectors()) bezier = bezier && is_unit_bezier(kv);
@@ -625,6 +547,8 @@ std::string object_type_name(const ModelObject& object) {
 }
 
 void validate_attributes(const ModelObject& object) {
+  if (is_simplex_spline_volume(object) && !object.attributes.empty())
+    throw InvalidInput("a simplex_spline_volume keeps its attributes in its control vectors (DmsSplineVolume::add_attribute)", "attributes");
   const int count = control_point_count(object.spline);
   for (const auto& [name, values] : object.attributes) {
     const std::string at = json_key_path("attributes", name);
@@ -651,10 +575,12 @@ double evaluate_attribute(const ModelObject& object, const std::string& name, co
                        (names.empty() ? std::string("none") : names) + ")");
   }
   if (is_swept_solid(object)) throw InvalidInput("a swept solid has no attributes");
+  if (is_simplex_spline_volume(object))
+    throw InvalidInput("a simplex_spline_volume is evaluated at points of its domain (DmsSplineEvaluator), not at parameters");
   return std::visit(
       [&](const auto& spline) -> double {
         using Spline = std::decay_t<decltype(spline)>;
-        if constexpr (std::is_same_v<Spline, SweptSolid>) {
+        if constexpr (std::is_same_v<Spline, SweptSolid> || std::is_same_v<Spline, DmsSplineVolume>) {
           return 0.0;  // refused above
         } else {
         constexpr int D = Spline::num_parameters;
@@ -697,6 +623,8 @@ std::string model_to_json(const Model& model) {
     std::visit(
         [&](const auto& spline) {
           if constexpr (std::is_same_v<std::decay_t<decltype(spline)>, SweptSolid>) write_swept_solid(out, spline, indent, path);
+          else if constexpr (std::is_same_v<std::decay_t<decltype(spline)>, DmsSplineVolume>)
+            write_simplex_spline_volume(out, spline, indent, path);
           else write_spline(out, spline, bezier, indent, path);
         },
         object.spline);

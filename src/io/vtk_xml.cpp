@@ -1,5 +1,7 @@
 #include "volspline/io/vtk_xml.h"
 
+#include "simplex_vtu.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -196,6 +198,20 @@ std::string xml_escaped(const std::string& text) {
 
 std::string vtu_text(const Model& model) {
   if (model.objects.empty()) throw InvalidInput("expected at least one object, got none", "objects");
+  // A simplex spline volume is written on its own (io/simplex_vtu.h): its cells are sampled
+  // tetrahedra, not Bézier cells.
+  for (std::size_t i = 0; i < model.objects.size(); ++i) {
+    if (!is_simplex_spline_volume(model.objects[i])) continue;
+    if (model.objects.size() > 1)
+      throw InvalidInput("a simplex_spline_volume is written to VTK alone; this model has " + std::to_string(model.objects.size()) +
+                             " objects (write them to separate files)",
+                         "objects[" + std::to_string(i) + "]");
+    try {
+      return simplex_spline_vtu_text(std::get<DmsSplineVolume>(model.objects[i].spline));
+    } catch (const InvalidInput& e) {
+      throw e.located("objects[" + std::to_string(i) + "]");
+    }
+  }
   std::set<std::string> name_set;
   bool rational = false;
   bool jacobian = true;

@@ -12,7 +12,15 @@ Model deform_model(const Lattice& lattice, Model model, const std::string& sourc
     try {
       if (auto* c = std::get_if<BSplineCurve>(&object.spline)) object.spline = deform_curve(lattice, *c);
       else if (auto* f = std::get_if<BSplineSurface>(&object.spline)) object.spline = deform_surface(lattice, *f);
-      else throw InvalidInput("expected a curve or a surface; deform volumes by composing their control points with `make`", "type");
+      else if (auto* v = std::get_if<DmsSplineVolume>(&object.spline)) {
+        // Hua–He–Qin §4.2: a simplex spline volume is deformed by moving its control points
+        // through the lattice (not composed exactly: the composition's degree would multiply).
+        Eigen::MatrixXd& control = v->control_vectors();
+        std::vector<Eigen::Vector3d> points(static_cast<std::size_t>(control.rows()));
+        for (Eigen::Index r = 0; r < control.rows(); ++r) points[static_cast<std::size_t>(r)] = control.row(r).head<3>().transpose();
+        const std::vector<Eigen::Vector3d> moved = deform_points(lattice, points);
+        for (Eigen::Index r = 0; r < control.rows(); ++r) control.row(r).head<3>() = moved[static_cast<std::size_t>(r)].transpose();
+      } else throw InvalidInput("expected a curve, a surface or a simplex_spline_volume; deform tensor-product volumes by composing their control points with `make`", "type");
     } catch (const InvalidInput& e) {
       throw e.located(object_location(source_name, i));
     }

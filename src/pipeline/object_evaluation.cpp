@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <string>
 
+#include <Eigen/Geometry>
+
 #include "volspline/core/error.h"
+#include "volspline/simplex/dms_spline_evaluator.h"
 
 namespace volspline {
 namespace {
@@ -49,13 +53,62 @@ std::vector<std::vector<double>> grid_rows(const TensorSpline<D>& s, const std::
   return rows;
 }
 
+std::vector<double> simplex_row(DmsSplineEvaluator& evaluator, const std::vector<double>& x, bool derivatives) {
+  if (x.size() != 3) throw InvalidInput("expected 3 coordinates x, y, z of a point of the domain, got " + std::to_string(x.size()) + " value(s)");
+  const DmsSplinePoint p = evaluator.evaluate(Eigen::Vector3d(x[0], x[1], x[2]), derivatives ? 1 : 0);
+  const auto k = static_cast<std::size_t>(p.value.size());
+  std::vector<double> row(k * (derivatives ? 4 : 1));
+  for (std::size_t c = 0; c < k; ++c) row[c] = p.value[static_cast<Eigen::Index>(c)];
+  if (derivatives)
+    for (std::size_t d = 0; d < 3; ++d)
+      for (std::size_t c = 0; c < k; ++c) row[(d + 1) * k + c] = p.gradient(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(d));
+  return row;
+}
+
 }  // namespace
 
 std::vector<double> evaluate_object_at(const ModelObject& object, const std::vector<double>& t, bool derivatives) {
+  if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) {
+    DmsSplineEvaluator evaluator(*volume);
+    return simplex_row(evaluator, t, derivatives);
+  }
   return visit_spline(object, "evaluation", "", [&](const auto& s) { return row_at(s, t, derivatives); });
 }
 
+std::vector<std::vector<double>> evaluate_object_at_each(const ModelObject& object, const std::vector<std::vector<double>>& points,
+                                                         bool derivatives) {
+  std::vector<std::vector<double>> rows;
+  rows.reserve(points.size());
+  std::optional<DmsSplineEvaluator> evaluator;
+  if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) evaluator.emplace(*volume);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    try {
+      rows.push_back(evaluator ? simplex_row(*evaluator, points[i], derivatives) : evaluate_object_at(object, points[i], derivatives));
+    } catch (const InvalidInput& e) {
+      throw e.located("points[" + std::to_string(i) + "]");
+    }
+  }
+  return rows;
+}
+
 std::vector<std::vector<double>> evaluate_object_on_grid(const ModelObject& object, const std::vector<int>& counts, bool derivatives) {
+  if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) {
+    if (counts.size() != 3) throw InvalidInput("expected 3 sample counts (x, y, z), got " + std::to_string(counts.size()));
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& p : volume->domain().points) box.extend(p);
+    std::array<std::vector<double>, 3> samples;
+    for (std::size_t d = 0; d < 3; ++d) {
+      if (counts[d] < 2) throw InvalidInput("expected at least 2 samples per direction, got " + std::to_string(counts[d]));
+      const double a = box.min()[static_cast<Eigen::Index>(d)], b = box.max()[static_cast<Eigen::Index>(d)];
+      for (int i = 0; i < counts[d]; ++i) samples[d].push_back(i == counts[d] - 1 ? b : a + (b - a) * i / (counts[d] - 1));
+    }
+    std::vector<std::vector<double>> points;
+    points.reserve(samples[0].size() * samples[1].size() * samples[2].size());
+    for (double z : samples[2])
+      for (double y : samples[1])
+        for (double x : samples[0]) points.push_back({x, y, z});
+    return evaluate_object_at_each(object, points, derivatives);
+  }
   return visit_spline(object, "evaluation", "", [&](const auto& s) { return grid_rows(s, counts, derivatives); });
 }
 

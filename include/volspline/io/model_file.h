@@ -1,6 +1,7 @@
 #pragma once
 // Model files, format version 1: a JSON document holding B-spline and Bézier curves, surfaces,
-// volumes and 4-variate hypervolumes, and swept solids (construct/swept_solid.h). The format, every key and the error messages are described in
+// volumes and 4-variate hypervolumes, swept solids (construct/swept_solid.h) and trivariate
+// simplex spline volumes (simplex/dms_spline_volume.h). The format, every key and the error messages are described in
 // docs/model-format.md; storage order and domain conventions: core/conventions.h.
 #include <filesystem>
 #include <map>
@@ -15,16 +16,18 @@
 
 
 #include "volspline/construct/swept_solid.h"
+#include "volspline/simplex/dms_spline_volume.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/tensor_spline.h"
 
 namespace volspline {
 
-/// A curve (D=1), surface (D=2), volume (D=3) or hypervolume (D=4), or a swept solid: a
+/// A curve (D=1), surface (D=2), volume (D=3) or hypervolume (D=4); a swept solid: a
 /// generator, a path and a frame, which is no single spline (its patches are hypervolumes,
-/// swept_patches). Code that works on splines visits the first four and refuses or skips the
-/// last (is_swept_solid).
-using SplineObject = std::variant<TensorSpline<1>, TensorSpline<2>, TensorSpline<3>, TensorSpline<4>, SweptSolid>;
+/// swept_patches); or a DMS simplex spline volume over a tetrahedral domain, which holds its
+/// attributes itself. Code that works on tensor-product splines visits the first four and
+/// refuses or skips the others (is_swept_solid, is_simplex_spline_volume).
+using SplineObject = std::variant<TensorSpline<1>, TensorSpline<2>, TensorSpline<3>, TensorSpline<4>, SweptSolid, DmsSplineVolume>;
 
 /// One entry of a model's "objects" array.
 struct ModelObject {
@@ -44,6 +47,8 @@ struct ModelObject {
 
 /// Whether `object` is a swept solid rather than a spline.
 inline bool is_swept_solid(const ModelObject& object) { return std::holds_alternative<SweptSolid>(object.spline); }
+/// Whether `object` is a simplex spline volume (its attributes are columns of its control vectors).
+inline bool is_simplex_spline_volume(const ModelObject& object) { return std::holds_alternative<DmsSplineVolume>(object.spline); }
 
 /// Calls f(spline) with the curve, surface or volume of `object` and returns what f returns: for
 /// code that handles only those (exchange formats, Bézier cells, solids).
@@ -54,7 +59,8 @@ decltype(auto) visit_classic_spline(const ModelObject& object, const std::string
 
 /// Calls f(spline) with the spline (D = 1..4) of `object` and returns what f returns.
 /// \throw InvalidInput located at `where` ("ACTION works on splines, not on a swept solid (its
-/// patches are hypervolumes)") if the object is a swept solid; whatever f throws.
+/// patches are hypervolumes)") if the object is a swept solid or a simplex spline volume;
+/// whatever f throws.
 template <class F>
 decltype(auto) visit_spline(const ModelObject& object, const std::string& action, const std::string& where, F&& f);
 
@@ -116,6 +122,8 @@ decltype(auto) visit_spline(const ModelObject& object, const std::string& action
       [&](const auto& spline) -> Result {
         if constexpr (std::is_same_v<std::decay_t<decltype(spline)>, SweptSolid>) {
           throw InvalidInput(action + " works on splines, not on a swept solid (its patches are hypervolumes)", where);
+        } else if constexpr (std::is_same_v<std::decay_t<decltype(spline)>, DmsSplineVolume>) {
+          throw InvalidInput(action + " works on tensor-product splines, not on a simplex_spline_volume", where);
         } else {
           return f(spline);
         }
@@ -129,7 +137,8 @@ decltype(auto) visit_classic_spline(const ModelObject& object, const std::string
   return std::visit(
       [&](const auto& spline) -> Result {
         using Spline = std::decay_t<decltype(spline)>;
-        if constexpr (std::is_same_v<Spline, SweptSolid> || std::is_same_v<Spline, BSplineHypervolume>) {
+        if constexpr (std::is_same_v<Spline, SweptSolid> || std::is_same_v<Spline, BSplineHypervolume> ||
+                      std::is_same_v<Spline, DmsSplineVolume>) {
           throw InvalidInput(format + " holds curves, surfaces and volumes, not a " + object_type_name(object), where);
         } else {
           return f(spline);

@@ -23,6 +23,10 @@
 //                                             teal
 //   15     SweepRankDeficient sweep_rank_deficient  where J123 = J124 = J134 = J234 = 0 inside
 //                                             the 4-dimensional domain: magenta
+//   16     AttributeIsosurface attribute_isosurface  where an attribute of a simplex spline volume
+//                                             takes a value (Hua–He–Qin §6.2): amber
+//   17     DomainBoundary   domain_boundary   the boundary of a simplex spline volume's domain
+//                                             mapped by its geometry: pale grey-blue
 //
 // Numbers 0..10 are those of every mesh file volspline has written; a number not in the table (a
 // file may carry any) is drawn grey.
@@ -53,6 +57,8 @@ enum class Part : std::uint8_t {
   SweepCap = 13,
   SweepFace = 14,
   SweepRankDeficient = 15,
+  AttributeIsosurface = 16,
+  DomainBoundary = 17,
 };
 
 /// One row of the part table.
@@ -65,7 +71,7 @@ struct PartInfo {
 };
 
 /// Every part, in the order of its number (kParts[n].part has number n).
-inline constexpr std::array<PartInfo, 16> kParts{{
+inline constexpr std::array<PartInfo, 18> kParts{{
     {Part::UMin, "u_min", {0.26, 0.47, 0.82}},             // blue
     {Part::UMax, "u_max", {0.55, 0.72, 0.95}},             // light blue
     {Part::VMin, "v_min", {0.30, 0.66, 0.38}},             // green
@@ -82,6 +88,8 @@ inline constexpr std::array<PartInfo, 16> kParts{{
     {Part::SweepCap, "sweep_cap", {0.42, 0.55, 0.72}},     // steel blue
     {Part::SweepFace, "sweep_face", {0.25, 0.68, 0.66}},   // teal
     {Part::SweepRankDeficient, "sweep_rank_deficient", {0.85, 0.25, 0.65}},  // magenta
+    {Part::AttributeIsosurface, "attribute_isosurface", {0.98, 0.70, 0.20}},  // amber
+    {Part::DomainBoundary, "domain_boundary", {0.72, 0.76, 0.84}},  // pale grey-blue
 }};
 
 /// The colour of numbers not in the table.

@@ -1,0 +1,61 @@
+#pragma once
+// Evaluating a DMS spline volume (simplex/dms_spline_volume.h) at scattered points: geometry,
+// attributes and their gradients (Hua–He–Qin eqs. 2, 6, 7), zero outside the domain.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "volspline/simplex/dms_spline_volume.h"
+
+namespace volspline {
+
+/// The value and gradient of a DMS spline volume at one point.
+struct DmsSplinePoint {
+  /// x lies in the closed domain Ω; outside, value and gradient are 0.
+  bool inside = false;
+  /// The tetrahedron of Ω that holds x (closed, the lowest index where several do), or -1.
+  int tetrahedron = -1;
+  /// x, y, z, g_1, ..., g_k (dimension() entries).
+  Eigen::VectorXd value;
+  /// d value / d x: dimension() rows, 3 columns; filled for order >= 1.
+  Eigen::Matrix<double, Eigen::Dynamic, 3> gradient;
+};
+
+/// Evaluates a DMS spline volume at scattered points. A uniform grid over the supports' bounding
+/// boxes gives the tetrahedra whose basis functions may be nonzero at a point; each is rejected
+/// first by four planes parallel to its faces that enclose all its knots (the supports lie in the
+/// hull of the knots), then evaluated with DmsTetrahedronBasis. Copies share the index; one
+/// evaluator per thread (each holds scratch memory). The volume must outlive the evaluator and
+/// its domain and knots must not change (its control vectors may).
+class DmsSplineEvaluator {
+ public:
+  explicit DmsSplineEvaluator(const DmsSplineVolume& volume);
+  ~DmsSplineEvaluator();
+  DmsSplineEvaluator(const DmsSplineEvaluator& other);
+  DmsSplineEvaluator& operator=(const DmsSplineEvaluator&) = delete;
+
+  const DmsSplineVolume& volume() const { return *volume_; }
+  /// The tetrahedron of Ω that holds x (closed: a point on a face belongs to both, the lower index
+  /// is returned), or -1 outside Ω. Exact orientation predicates.
+  int locate(const Eigen::Vector3d& x) const;
+  /// Value (order 0) and gradient (order 1) at x. \throw InvalidInput for another order.
+  void evaluate(const Eigen::Vector3d& x, int order, DmsSplinePoint& out);
+  DmsSplinePoint evaluate(const Eigen::Vector3d& x, int order = 0);
+  /// The tetrahedra whose supports' enclosing planes hold x (a superset of those with a basis
+  /// function nonzero at x).
+  void support_candidates(const Eigen::Vector3d& x, std::vector<int>& out) const;
+  /// Calls f(row, value) for every basis function N_β^I with x in its support (value may be 0)
+  /// and x inside Ω: the row of the control vector it multiplies. Σ value = 1 on Ω.
+  void for_each_basis_function(const Eigen::Vector3d& x, const std::function<void(int row, double value)>& f);
+
+ private:
+  struct Index;
+  struct Scratch;
+  const DmsSplineVolume* volume_;
+  std::shared_ptr<const Index> index_;
+  std::unique_ptr<Scratch> scratch_;
+};
+
+}  // namespace volspline

@@ -1,0 +1,89 @@
+// Isosurfaces of simplex spline attributes (Hua–He–Qin §6.2): vertices on the spline's level set
+// (root finding), normals from the gradient, no cracks between domain tetrahedra.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "support/simplex_domains.h"
+#include "volspline/core/error.h"
+#include "volspline/extract/simplex_isosurface.h"
+#include "volspline/mesh/mesh_checks.h"
+
+namespace volspline {
+namespace {
+
+// |x − c|² as a spline of degree n >= 2: its blossom is Σ_a mean over ordered pairs of distinct
+// arguments of (x_i − c)_a (x_j − c)_a.
+double sphere_blossom(std::span<const Eigen::Vector3d> args, const Eigen::Vector3d& c) {
+  double sum = 0;
+  int pairs = 0;
+  for (std::size_t i = 0; i < args.size(); ++i)
+    for (std::size_t j = 0; j < args.size(); ++j)
+      if (i != j) sum += (args[i] - c).dot(args[j] - c), ++pairs;
+  return sum / pairs;
+}
+
+TEST(SimplexIsosurface, SphereOfAQuadraticAttributeIsExactClosedAndOriented) {
+  DmsSplineVolume v = test_support::cube_simplex_volume(2, DmsControlSharing::Shared, 4);
+  const Eigen::Vector3d c(0.5, 0.48, 0.52);
+  set_column_from_blossom(v, 3, [&](std::span<const Eigen::Vector3d> a) { return sphere_blossom(a, c); });
+  SimplexIsosurfaceOptions options;
+  options.value = 0.3 * 0.3;
+  options.subdivisions = 3;
+  const SimplexIsosurface s = simplex_isosurface(v, options);
+  ASSERT_GT(s.mesh.num_triangles(), 200u);
+  for (std::size_t i = 0; i < s.mesh.num_vertices(); ++i) {
+    EXPECT_NEAR((s.mesh.positions[i] - c).norm(), 0.3, 1e-10);
+    // The normal points toward larger |x − c|²: outward.
+    EXPECT_NEAR(s.normals[i].dot((s.mesh.positions[i] - c).normalized()), 1.0, 1e-9);
+  }
+  TriangleMesh welded = s.mesh;
+  const EdgeStatistics edges = edge_statistics(welded);
+  EXPECT_TRUE(edges.closed_and_oriented()) << "boundary edges " << edges.boundary_edges;
+  // Oriented toward larger values: outward, so the enclosed volume is positive and close to the ball's.
+  EXPECT_NEAR(enclosed_volume(s.mesh), 4.0 / 3.0 * M_PI * 0.027, 0.08 * 0.113);
+  EXPECT_LT(s.largest_residual, 1e-12);
+}
+
+TEST(SimplexIsosurface, LinearAttributeGivesAPlaneAcrossTetrahedraOfEveryDegree) {
+  for (const int degree : {1, 3}) {
+    DmsSplineVolume v = test_support::cube_simplex_volume(degree);
+    const Eigen::Vector3d a(1.0, 2.0, -1.0);
+    set_column_from_blossom(v, 3, [&](std::span<const Eigen::Vector3d> args) {
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const auto& x : args) mean += x;
+      return a.dot(mean) / static_cast<double>(args.size());
+    });
+    SimplexIsosurfaceOptions options;
+    options.value = 0.9;
+    options.subdivisions = 2;
+    const SimplexIsosurface s = simplex_isosurface(v, options);
+    ASSERT_GT(s.mesh.num_triangles(), 10u);
+    for (std::size_t i = 0; i < s.mesh.num_vertices(); ++i) {
+      EXPECT_NEAR(a.dot(s.mesh.positions[i]), 0.9, 1e-12);
+      EXPECT_NEAR(s.normals[i].dot(a.normalized()), 1.0, 1e-12);
+    }
+    // An open surface whose only border is on ∂Ω: no cracks inside.
+    const EdgeStatistics edges = edge_statistics(s.mesh);
+    EXPECT_EQ(edges.nonmanifold_edges, 0u);
+    EXPECT_EQ(edges.inconsistently_oriented_edges, 0u);
+    for (const auto& t : s.mesh.triangles)
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Vector3d p = s.mesh.positions[static_cast<std::size_t>(t[static_cast<std::size_t>(c)])];
+        EXPECT_TRUE((p.array() >= -1e-12).all() && (p.array() <= 1 + 1e-12).all());
+      }
+  }
+}
+
+TEST(SimplexIsosurface, RefusesVolumesWithoutTheAttribute) {
+  DmsSplineVolume v = test_support::cube_simplex_volume(1);
+  SimplexIsosurfaceOptions options;
+  options.attribute = "temperature";
+  EXPECT_THROW(simplex_isosurface(v, options), InvalidInput);
+  options = {};
+  options.subdivisions = 65;
+  EXPECT_THROW(simplex_isosurface(v, options), InvalidInput);
+}
+
+}  // namespace
+}  // namespace volspline

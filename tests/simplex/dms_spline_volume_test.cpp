@@ -1,0 +1,200 @@
+// DMS spline volumes (Hua–He–Qin §3.2): partition of unity everywhere on the closed domain,
+// reproduction of polynomials of degree <= n from blossoms, gradients against finite
+// differences, shared control vectors agreeing with per-tetrahedron ones, zero outside Ω.
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "support/simplex_domains.h"
+#include "volspline/core/error.h"
+#include "volspline/mesh/delaunay_tetrahedralization.h"
+#include "volspline/simplex/dms_spline_evaluator.h"
+#include "volspline/simplex/dms_spline_volume.h"
+#include "volspline/simplex/knot_clouds.h"
+
+namespace volspline {
+namespace {
+
+TetrahedralMesh cube_domain() { return test_support::jittered_cube_domain(); }
+
+DmsSplineVolume cube_volume(int degree, DmsControlSharing sharing = DmsControlSharing::Shared) {
+  return test_support::cube_simplex_volume(degree, sharing);
+}
+
+// A polynomial of degree d as a product of d linear forms a_m·x + b_m, and its blossom as a
+// polynomial of degree n >= d: the mean over all orders of the n arguments of the product of
+// the forms at the first d of them (symmetric, multi-affine, equal to P on the diagonal).
+struct ProductPolynomial {
+  std::vector<Eigen::Vector4d> forms;  // (a, b)
+  double operator()(const Eigen::Vector3d& x) const {
+    double v = 1;
+    for (const Eigen::Vector4d& f : forms) v *= f.head<3>().dot(x) + f[3];
+    return v;
+  }
+  double blossom(std::span<const Eigen::Vector3d> arguments) const {
+    std::vector<int> order(arguments.size());
+    std::iota(order.begin(), order.end(), 0);
+    double sum = 0;
+    int count = 0;
+    do {
+      double v = 1;
+      for (std::size_t m = 0; m < forms.size(); ++m) v *= forms[m].head<3>().dot(arguments[static_cast<std::size_t>(order[m])]) + forms[m][3];
+      sum += v;
+      ++count;
+    } while (std::next_permutation(order.begin(), order.end()));
+    return sum / count;
+  }
+};
+
+ProductPolynomial random_polynomial(int degree, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  ProductPolynomial p;
+  for (int m = 0; m < degree; ++m) p.forms.emplace_back(u(rng), u(rng), u(rng), u(rng) + 1.5);
+  return p;
+}
+
+// Points where the half-open rule decides: random interior points, the domain's vertices, edge
+// midpoints, face centroids (interior and boundary faces), and knots.
+std::vector<Eigen::Vector3d> test_points(const DmsSplineVolume& v, std::mt19937& rng) {
+  std::vector<Eigen::Vector3d> points;
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 60; ++i) points.emplace_back(u(rng), u(rng), u(rng));
+  for (const Eigen::Vector3d& p : v.domain().points) points.push_back(p);
+  for (std::size_t t = 0; t < v.domain().tetrahedra.size(); t += 3) {
+    const auto& tet = v.domain().tetrahedra[t];
+    const auto P = [&](int c) { return v.domain().points[static_cast<std::size_t>(tet[static_cast<std::size_t>(c)])]; };
+    points.push_back((P(0) + P(1)) / 2);
+    points.push_back((P(1) + P(2) + P(3)) / 3);
+    points.push_back((P(0) + P(2) + P(3)) / 3);
+  }
+  for (const Eigen::Vector3d& k : v.knots().knots)
+    if ((k.array() >= 0).all() && (k.array() <= 1).all()) points.push_back(k);
+  return points;
+}
+
+TEST(DmsSplineVolume, BasisSumsToOneEverywhereOnTheClosedDomain) {
+  std::mt19937 rng(11);
+  for (int degree = 0; degree <= 3; ++degree) {
+    const DmsSplineVolume v = cube_volume(degree, degree == 0 ? DmsControlSharing::PerTetrahedron : DmsControlSharing::Shared);
+    DmsSplineEvaluator evaluator(v);
+    for (const Eigen::Vector3d& x : test_points(v, rng)) {
+      double sum = 0;
+      bool negative = false;
+      evaluator.for_each_basis_function(x, [&](int, double value) {
+        sum += value;
+        negative = negative || value < -1e-14;
+      });
+      ASSERT_NEAR(sum, 1.0, 1e-12) << "degree " << degree << " at " << x.transpose();
+      ASSERT_FALSE(negative);
+    }
+  }
+}
+
+TEST(DmsSplineVolume, ReproducesEveryPolynomialOfDegreeAtMostNFromItsBlossom) {
+  std::mt19937 rng(5);
+  for (int degree = 1; degree <= 3; ++degree) {
+    for (const DmsControlSharing sharing : {DmsControlSharing::Shared, DmsControlSharing::PerTetrahedron}) {
+      DmsSplineVolume v = cube_volume(degree, sharing);
+      const ProductPolynomial p = random_polynomial(degree, rng), q = random_polynomial(degree - 1, rng);
+      set_column_from_blossom(v, v.attribute_column("density"), [&](std::span<const Eigen::Vector3d> a) { return p.blossom(a); });
+      set_column_from_blossom(v, 1, [&](std::span<const Eigen::Vector3d> a) { return q.blossom(a); });
+      DmsSplineEvaluator evaluator(v);
+      for (const Eigen::Vector3d& x : test_points(v, rng)) {
+        const DmsSplinePoint s = evaluator.evaluate(x);
+        ASSERT_TRUE(s.inside);
+        EXPECT_NEAR(s.value[0], x.x(), 1e-12);  // the identity geometry, from the blossom of x
+        EXPECT_NEAR(s.value[2], x.z(), 1e-12);
+        EXPECT_NEAR(s.value[1], q(x), 1e-11) << "degree " << degree;
+        EXPECT_NEAR(s.value[3], p(x), 1e-11) << "degree " << degree;
+      }
+    }
+  }
+}
+
+TEST(DmsSplineVolume, GradientMatchesCentralDifferences) {
+  std::mt19937 rng(3);
+  for (int degree = 2; degree <= 3; ++degree) {
+    DmsSplineVolume v = cube_volume(degree);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (Eigen::Index r = 0; r < v.control_vectors().rows(); ++r) v.control_vectors()(r, 3) = u(rng);  // a generic attribute
+    DmsSplineEvaluator evaluator(v);
+    std::uniform_real_distribution<double> inside(0.1, 0.9);
+    for (int i = 0; i < 20; ++i) {
+      const Eigen::Vector3d x(inside(rng), inside(rng), inside(rng));
+      const DmsSplinePoint s = evaluator.evaluate(x, 1);
+      for (int d = 0; d < 3; ++d) {
+        const double h = 1e-6;
+        const Eigen::Vector3d e = Eigen::Vector3d::Unit(d) * h;
+        const double fd = (evaluator.evaluate(x + e).value[3] - evaluator.evaluate(x - e).value[3]) / (2 * h);
+        EXPECT_NEAR(s.gradient(3, d), fd, 1e-6 * std::max(1.0, std::abs(fd))) << "degree " << degree;
+        EXPECT_NEAR(s.gradient(d, d), 1.0, 1e-11);
+      }
+    }
+  }
+}
+
+TEST(DmsSplineVolume, SharedControlVectorsAreOnePerDomainPoint) {
+  const DmsSplineVolume shared = cube_volume(2, DmsControlSharing::Shared);
+  const DmsSplineVolume separate = cube_volume(2, DmsControlSharing::PerTetrahedron);
+  // Degree 2: the domain points are the vertices and the edge midpoints of Ω.
+  std::set<std::pair<int, int>> edges;
+  for (const auto& t : shared.domain().tetrahedra)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) edges.insert(std::minmax(t[static_cast<std::size_t>(a)], t[static_cast<std::size_t>(b)]));
+  EXPECT_EQ(shared.control_vector_count(), static_cast<int>(shared.domain().points.size() + edges.size()));
+  EXPECT_EQ(separate.control_vector_count(), static_cast<int>(10 * separate.domain().tetrahedra.size()));
+  DmsSplineEvaluator a(shared), b(separate);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 20; ++i) {
+    const Eigen::Vector3d x(u(rng), u(rng), u(rng));
+    EXPECT_LT((a.evaluate(x).value - b.evaluate(x).value).norm(), 1e-13);
+  }
+  for (int row = 0; row < shared.control_vector_count(); ++row) {
+    const auto& uses = shared.control_row_uses()[static_cast<std::size_t>(row)];
+    for (const auto& [t, beta] : uses) EXPECT_EQ(shared.control_row(t, beta), row);
+  }
+}
+
+TEST(DmsSplineVolume, IsZeroOutsideTheDomain) {
+  DmsSplineVolume v = cube_volume(2);
+  v.control_vectors().col(3).setOnes();
+  DmsSplineEvaluator evaluator(v);
+  for (const Eigen::Vector3d& x : {Eigen::Vector3d(1.01, 0.5, 0.5), Eigen::Vector3d(-1e-9, 0.2, 0.3), Eigen::Vector3d(5, 5, 5)}) {
+    const DmsSplinePoint s = evaluator.evaluate(x, 1);
+    EXPECT_FALSE(s.inside);
+    EXPECT_EQ(s.tetrahedron, -1);
+    EXPECT_EQ(s.value.norm(), 0.0);
+    EXPECT_EQ(s.gradient.norm(), 0.0);
+  }
+  const DmsSplinePoint corner = evaluator.evaluate(Eigen::Vector3d(1, 1, 1));
+  EXPECT_TRUE(corner.inside);
+  EXPECT_NEAR(corner.value[3], 1.0, 1e-12);
+}
+
+TEST(DmsSplineVolume, RefusesWhatItCannotRepresent) {
+  TetrahedralMesh domain = cube_domain();
+  KnotClouds zero = generate_knot_clouds(domain, 0);
+  EXPECT_THROW(DmsSplineVolume(domain, zero, DmsControlSharing::Shared), InvalidInput);
+  KnotClouds two = generate_knot_clouds(domain, 2);
+  for (const std::vector<std::string>& names : std::vector<std::vector<std::string>>{{"x"}, {""}, {"a", "a"}}) {
+    try {
+      DmsSplineVolume(domain, two, DmsControlSharing::Shared, names);
+      ADD_FAILURE() << "accepted bad attribute names";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(e.where().find("attributes"), std::string::npos) << e.what();
+    }
+  }
+  KnotClouds short_clouds = two;
+  short_clouds.knots.pop_back();
+  EXPECT_THROW(DmsSplineVolume(domain, short_clouds, DmsControlSharing::Shared), InvalidInput);
+  DmsSplineVolume v(domain, two, DmsControlSharing::Shared, {"a"});
+  EXPECT_THROW(v.attribute_column("b"), InvalidInput);
+  EXPECT_THROW(DmsSplineEvaluator(v).evaluate(Eigen::Vector3d(0.5, 0.5, 0.5), 2), InvalidInput);
+}
+
+}  // namespace
+}  // namespace volspline
