@@ -344,43 +344,71 @@ double LineRecurrence::integral(KnotMask subset) {
   return v;
 }
 
+namespace {
+
+// The parameter interval where every λ_j(origin + s·direction) >= 0 (the chord of the frame's
+// tetrahedron), intersected with [lo, hi]; empty when lo >= hi on return.
+void chord(const std::array<double, 4>& l, const std::array<double, 4>& m, double& lo, double& hi) {
+  for (int j = 0; j < 4; ++j) {
+    if (m[j] == 0) {
+      if (l[j] < 0) hi = lo;
+    } else if (m[j] > 0) {
+      lo = std::max(lo, -l[j] / m[j]);
+    } else {
+      hi = std::min(hi, -l[j] / m[j]);
+    }
+  }
+}
+
+}  // namespace
+
 double LineRecurrence::compute(KnotMask subset) {
   if (binding_->excludes(subset, coordinates_lo_, coordinates_hi_)) return 0;
   const int degree = std::popcount(subset) - 4;
-  if (degree == 0) {
-    // The chord: the s where every λ_j(origin_ + s·direction_) >= 0, intersected with the interval.
-    std::array<int, kMaxRecurrenceKnots> idx{};
-    subset_indices(subset, idx);
-    BarycentricFrame frame;
-    if (!make_frame(binding_->knot(idx[0]), binding_->knot(idx[1]), binding_->knot(idx[2]), binding_->knot(idx[3]),
-                    frame)) {
-      return 0;
-    }
-    const auto l = frame.lambda(origin_);
-    const auto m = frame.mu(direction_);
-    double s_lo = lower_;
-    double s_hi = upper_;
-    for (int j = 0; j < 4; ++j) {
-      if (m[j] == 0) {
-        if (l[j] < 0) return 0;
-      } else if (m[j] > 0) {
-        s_lo = std::max(s_lo, -l[j] / m[j]);
-      } else {
-        s_hi = std::min(s_hi, -l[j] / m[j]);
-      }
-    }
-    return s_hi > s_lo ? (s_hi - s_lo) / std::abs(frame.det) : 0.0;
-  }
   std::array<int, 4> w{};
   BarycentricFrame frame;
-  if (!binding_->choose(subset, nullptr, w, frame)) return 0;
-  const auto l = frame.lambda(origin_);
+  if (degree == 0) {
+    std::array<int, kMaxRecurrenceKnots> idx{};
+    subset_indices(subset, idx);
+    w = {idx[0], idx[1], idx[2], idx[3]};
+    if (!make_frame(binding_->knot(w[0]), binding_->knot(w[1]), binding_->knot(w[2]), binding_->knot(w[3]), frame)) {
+      return 0;
+    }
+  } else if (!binding_->choose(subset, nullptr, w, frame)) {
+    return 0;
+  }
+  // Eq. 16 holds about any point of the line; it is applied about the middle of the chord of W's
+  // tetrahedron (when the line meets it), where every λ_j >= 0 and the sum does not cancel, or
+  // else about the point nearest W's centroid. For degree 0 the chord is measured from there too.
+  const auto m = frame.mu(direction_);
+  double shift = 0;
+  {
+    double lo = -std::numeric_limits<double>::infinity();
+    double hi = std::numeric_limits<double>::infinity();
+    chord(frame.lambda(origin_), m, lo, hi);
+    if (lo < hi) {
+      shift = 0.5 * (lo + hi);
+    } else {
+      const Eigen::Vector3d centroid =
+          0.25 * (binding_->knot(w[0]) + binding_->knot(w[1]) + binding_->knot(w[2]) + binding_->knot(w[3]));
+      shift = (centroid - origin_).dot(direction_) / direction_.squaredNorm();
+    }
+    shift = std::clamp(shift, lower_, upper_);
+  }
+  const auto l = frame.lambda(origin_ + shift * direction_);
+  if (degree == 0) {
+    double lo = lower_ - shift;
+    double hi = upper_ - shift;
+    chord(l, m, lo, hi);
+    return hi > lo ? (hi - lo) / std::abs(frame.det) : 0.0;
+  }
   double sum = 0;
   for (int j = 0; j < 4; ++j) {
     if (l[j] != 0) sum += l[j] * integral(subset & ~bit(w[j]));
   }
   // Eq. 16 with the boundary terms of the integration by parts (docs/simplex-splines.md).
-  const double boundary = upper_ * at_upper_.value(subset) - lower_ * at_lower_.value(subset);
+  const double boundary =
+      (upper_ - shift) * at_upper_.value(subset) - (lower_ - shift) * at_lower_.value(subset);
   return (degree * sum + boundary) / (degree + 1);
 }
 
