@@ -18,6 +18,7 @@
 #include "volspline/spline/attribute_spline.h"
 #include "model_json_support.h"
 #include "simplex_spline_json.h"
+#include "model_curve.h"
 
 namespace volspline {
 
@@ -514,6 +515,22 @@ void write_attributes(std::ostringstream& out, const ModelObject& object, const 
 }
 
 }  // namespace
+
+BSplineCurve read_model_curve(const json& object, const std::string& path) { return read_part<1>(object, path, "a curve"); }
+
+std::string model_curve_json(const BSplineCurve& curve, const std::string& indent, const std::string& path) {
+  std::ostringstream out;
+  write_part(out, curve, indent, path, false);
+  return out.str();
+}
+
+std::string model_number_text(double value) { return number_text(value); }
+
+std::string model_numbers_json(const std::vector<double>& values, const std::string& indent) {
+  std::ostringstream out;
+  write_numbers(out, values.data(), values.size(), indent);
+  return out.str();
+}
 
 Model parse_model(std::string_view text, const std::string& source_name) {
   try {

@@ -1,0 +1,72 @@
+#pragma once
+// The DMS basis functions of one domain tetrahedron (Hua, He and Qin 2004, §3.2, eqs. 4-5):
+// N_β^I(x) = |d(p_i, q_j, r_k, s_l)| · M(x | V_β^I) for |β| = n, evaluated together with one memo
+// over the knot subsets their recurrences share. Conventions of M: simplex/simplex_spline.h.
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "volspline/simplex/simplex_spline.h"
+
+namespace volspline {
+
+/// The multi-indices β = (i, j, k, l) with |β| = degree, in this order: i from degree down to 0,
+/// then j from degree - i down to 0, then k from degree - i - j down to 0, l the rest.
+/// \throw InvalidInput for degree < 0.
+std::vector<std::array<int, 4>> dms_multi_indices(int degree);
+
+/// The position of β in dms_multi_indices(degree): C(n-i+2, 3) + C(n-i-j+1, 2) + l.
+/// \throw InvalidInput when β has a negative entry or |β| != degree.
+int dms_multi_index_position(const std::array<int, 4>& beta, int degree);
+
+/// The basis functions of one tetrahedron at a point, in dms_multi_indices order.
+struct DmsBasisValues {
+  std::vector<double> values;              // N_β^I(x) = |d(p_i, q_j, r_k, s_l)| · M(x | V_β^I)
+  std::vector<Eigen::Vector3d> gradients;  // filled for order >= 1
+  std::vector<Eigen::Matrix3d> hessians;   // filled for order 2
+};
+
+namespace simplex_detail {
+class DmsRecurrenceState;
+}
+
+/// All basis functions N_β^I of one domain tetrahedron I = (p, q, r, s), memoised: the V_β^I of
+/// eq. 4 share most of their subsets, so each distinct knot subset (a bitmask over the 4(n+1)
+/// knots) is evaluated once per point. Eq. 1 steps with the last knot of each cloud,
+/// (p_i, q_j, r_k, s_l) for V_β (non-degenerate by the DMS conditions), and with the four of
+/// largest |det| in subsets that miss a cloud. Reusable and allocation-free after the first call
+/// (the scratch lives in the object); one object per thread.
+class DmsTetrahedronBasis {
+ public:
+  /// \throw InvalidInput for a degree outside 0..kMaxSimplexSplineDegree.
+  explicit DmsTetrahedronBasis(int degree);
+  ~DmsTetrahedronBasis();
+  DmsTetrahedronBasis(DmsTetrahedronBasis&&) noexcept;
+  DmsTetrahedronBasis& operator=(DmsTetrahedronBasis&&) noexcept;
+  DmsTetrahedronBasis(const DmsTetrahedronBasis&) = delete;
+  DmsTetrahedronBasis& operator=(const DmsTetrahedronBasis&) = delete;
+
+  int degree() const { return degree_; }
+  /// The number of basis functions, (n+1)(n+2)(n+3)/6.
+  int size() const { return static_cast<int>(multi_indices_.size()); }
+  const std::vector<std::array<int, 4>>& multi_indices() const { return multi_indices_; }
+
+  /// clouds[c] points at the n+1 knots t_{c,0..n} of vertex c (c = 0..3 for p, q, r, s); t_{c,0}
+  /// is the vertex. Points outside the bounding box of the knots get zeros at once.
+  /// \throw InvalidInput for order outside 0..2.
+  void evaluate(const Eigen::Vector3d& x, const std::array<const Eigen::Vector3d*, 4>& clouds, int order,
+                DmsBasisValues& out);
+
+  /// ∫_a^b N_β^I(origin + t·direction) dt for every β (same order), memoised the same way
+  /// (eq. 16 with boundary terms, simplex_spline_line_integral). \throw InvalidInput for a > b.
+  void line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a, double b,
+                      const std::array<const Eigen::Vector3d*, 4>& clouds, std::vector<double>& out);
+
+ private:
+  int degree_;
+  std::vector<std::array<int, 4>> multi_indices_;
+  std::unique_ptr<simplex_detail::DmsRecurrenceState> state_;
+};
+
+}  // namespace volspline

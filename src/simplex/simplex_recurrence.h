@@ -1,0 +1,211 @@
+#pragma once
+// The recurrence of eq. 1 (Hua, He and Qin 2004) over subsets of a knot set, shared by the
+// single-spline routines (simplex_spline.cpp) and the DMS basis of one tetrahedron
+// (dms_tetrahedron_basis.cpp). A subset is a bitmask over at most 32 knots; a memo (an open
+// addressing table cleared by a generation stamp) evaluates each subset once per point or line.
+// docs/simplex-splines.md explains the choices.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "volspline/simplex/simplex_spline.h"
+
+namespace volspline::simplex_detail {
+
+using KnotMask = std::uint32_t;
+
+/// At most 4(n + 1) knots: the knot clouds of one domain tetrahedron of degree n.
+inline constexpr int kMaxRecurrenceKnots = 4 * (kMaxSimplexSplineDegree + 1);
+
+/// Barycentric coordinates with respect to four knots a, b, c, d:
+/// λ_j(x) = g[j]·(x - a) + [j == 0]. The g[j] = ∇λ_j are the μ_j(e_x, e_y, e_z) of eq. 2.
+struct BarycentricFrame {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  std::array<Eigen::Vector3d, 4> g{};
+  double det = 0;  // det[b - a, c - a, d - a]
+
+  std::array<double, 4> lambda(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d r = x - origin;
+    const double l1 = g[1].dot(r);
+    const double l2 = g[2].dot(r);
+    const double l3 = g[3].dot(r);
+    return {1.0 - l1 - l2 - l3, l1, l2, l3};
+  }
+  std::array<double, 4> mu(const Eigen::Vector3d& v) const {
+    return {g[0].dot(v), g[1].dot(v), g[2].dot(v), g[3].dot(v)};
+  }
+};
+
+/// det[b - a, c - a, d - a] in floating point.
+inline double oriented_det(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                           const Eigen::Vector3d& d) {
+  return (b - a).dot((c - a).cross(d - a));
+}
+
+/// Whether a, b, c, d are coplanar, decided exactly (CGAL's filtered orientation predicate).
+bool exactly_coplanar(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& d);
+
+/// Whether a, b, c are collinear, decided exactly.
+bool exactly_collinear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
+/// The frame of four knots, or false when they are exactly coplanar. A floating determinant that
+/// is tiny relative to the edge lengths is checked by the exact predicate.
+bool make_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                const Eigen::Vector3d& d, BarycentricFrame& frame);
+
+/// The half-open rule for x with barycentric coordinates `lambda` in `frame` (of a, b, c, d):
+/// decided by the signs of lambda where they are clearly away from 0, by the exact predicates
+/// (in_half_open_tetrahedron) otherwise.
+bool half_open_contains(const std::array<double, 4>& lambda, const Eigen::Vector3d& x, const Eigen::Vector3d& a,
+                        const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d);
+
+/// How eq. 1 picks its four knots W in a subset.
+enum class BarycentricChoice {
+  /// Those whose half-open tetrahedron contains the point, the largest |det| among them (the
+  /// largest |det| overall when none does): no cancellation, λ_j in [0, 1].
+  kContainingThenLargest,
+  /// The largest |det|: independent of the point, and every knot of the subset (so every point of
+  /// its hull, the support) has |λ_j| <= 1.
+  kLargest,
+  /// Knot clouds of a DMS tetrahedron (cloud c holds bits c(n+1)..c(n+1)+n): the last knot of each
+  /// cloud, (p_i, q_j, r_k, s_l) for V_β — non-degenerate by the DMS conditions (§3.2) and close
+  /// to the largest |det|; kLargest for subsets that miss a cloud.
+  kDmsLastOfEachCloud,
+};
+
+/// A test's own choice of W (returns false for "no independent four"); replaces the choice rule.
+using CustomChoice = std::function<bool(KnotMask subset, std::array<int, 4>& w)>;
+
+/// The knots a recurrence runs on, with the bounds that prune subsets whose support misses the
+/// point or line: each knot's barycentric coordinates in a reference frame (the first four knots
+/// of the largest |det|, or a DMS tetrahedron's vertices), so that a subset's hull lies in the
+/// intersection of four slabs min..max of its knots' coordinates.
+class KnotBinding {
+ public:
+  /// `cloud_size` is n + 1 for kDmsLastOfEachCloud (ignored otherwise). `reference` (four knot
+  /// indices) fixes the pruning frame; empty picks the largest |det| four. Returns false when
+  /// every four knots are coplanar (then every subset is flat and every spline 0).
+  bool bind(const Eigen::Vector3d* knots, int count, BarycentricChoice choice, int cloud_size,
+            const std::array<int, 4>* reference = nullptr);
+
+  const Eigen::Vector3d& knot(int i) const { return knots_[i]; }
+  int count() const { return count_; }
+  const BarycentricFrame& reference_frame() const { return reference_; }
+  const std::array<double, 4>& knot_coordinates(int i) const { return coordinates_[i]; }
+  void set_custom_choice(const CustomChoice* custom) { custom_ = custom; }
+
+  /// W and its frame for `subset` (at least 5 knots); `x` is the point for
+  /// kContainingThenLargest (nullptr: kLargest). False when the subset is flat.
+  bool choose(KnotMask subset, const Eigen::Vector3d* x, std::array<int, 4>& w, BarycentricFrame& frame) const;
+
+  /// Whether the slabs of `subset` exclude the reference coordinates range lo..hi (per direction).
+  bool excludes(KnotMask subset, const std::array<double, 4>& lo, const std::array<double, 4>& hi) const;
+
+ private:
+  bool choose_largest(KnotMask subset, const Eigen::Vector3d* x, std::array<int, 4>& w,
+                      BarycentricFrame& frame) const;
+
+  std::array<Eigen::Vector3d, kMaxRecurrenceKnots> knots_{};
+  std::array<std::array<double, 4>, kMaxRecurrenceKnots> coordinates_{};
+  int count_ = 0;
+  int cloud_size_ = 0;
+  BarycentricChoice choice_ = BarycentricChoice::kLargest;
+  BarycentricFrame reference_;
+  const CustomChoice* custom_ = nullptr;
+};
+
+/// A memo from subsets to one double, cleared in O(1) by a generation stamp.
+class SubsetMemo {
+ public:
+  /// Room for about `expected` subsets without growing.
+  void reserve(int expected);
+  void clear();
+  /// The value stored for `subset` in this generation, or nullptr.
+  double* find(KnotMask subset);
+  /// Stores `value` for `subset` (grows the table when it is 3/4 full).
+  void store(KnotMask subset, double value);
+
+ private:
+  struct Entry {
+    KnotMask mask = 0;
+    std::uint32_t stamp = 0;
+    double value = 0;
+  };
+  std::size_t slot(KnotMask subset) const {
+    return (static_cast<std::size_t>(subset) * 0x9E3779B1u >> 7) & (entries_.size() - 1);
+  }
+  void grow();
+  std::vector<Entry> entries_;
+  std::uint32_t stamp_ = 1;
+  std::size_t used_ = 0;
+};
+
+/// The number of subsets a DMS tetrahedron of degree n reaches (to size the memos).
+int expected_dms_subsets(int degree);
+
+/// M(x | subset) by eq. 1, memoised, for one point.
+class PointRecurrence {
+ public:
+  void attach(const KnotBinding* binding, int expected_subsets);
+  void set_point(const Eigen::Vector3d& x);
+  const Eigen::Vector3d& point() const { return x_; }
+  double value(KnotMask subset);
+  /// Value, gradient and (order 2) Hessian of M(x | subset) by eqs. 1-2.
+  SimplexSplineJet jet(KnotMask subset, int order);
+  /// D_v M(x | subset) by eq. 2.
+  double directional_derivative(KnotMask subset, const Eigen::Vector3d& v);
+
+ private:
+  bool pruned(KnotMask subset) const { return binding_->excludes(subset, coordinates_, coordinates_); }
+  Eigen::Vector3d gradient(KnotMask subset);
+  const Eigen::Vector3d* choice_point() const;
+
+  const KnotBinding* binding_ = nullptr;
+  SubsetMemo memo_;
+  Eigen::Vector3d x_ = Eigen::Vector3d::Zero();
+  std::array<double, 4> coordinates_{};
+};
+
+/// ∫_a^b M(origin + t·direction | subset) dt by eq. 16 with boundary terms, memoised, for one line.
+class LineRecurrence {
+ public:
+  void attach(const KnotBinding* binding, int expected_subsets);
+  void set_line(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a, double b);
+  double integral(KnotMask subset);
+
+ private:
+  double compute(KnotMask subset);
+
+  const KnotBinding* binding_ = nullptr;
+  SubsetMemo memo_;
+  PointRecurrence at_lower_;
+  PointRecurrence at_upper_;
+  // The line re-parametrised about the point nearest the knots: origin_ + s·direction_, s in
+  // [lower_, upper_] (clipped to the padded bounding box of the knots).
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction_ = Eigen::Vector3d::Zero();
+  double lower_ = 0;
+  double upper_ = 0;
+  bool empty_ = true;
+  double constant_factor_ = 0;  // direction 0: the integral is (b - a)·M(origin)
+  bool constant_ = false;
+  std::array<double, 4> coordinates_lo_{};
+  std::array<double, 4> coordinates_hi_{};
+};
+
+/// The subset's knot indices in increasing order; returns their number.
+inline int subset_indices(KnotMask subset, std::array<int, kMaxRecurrenceKnots>& indices) {
+  int count = 0;
+  while (subset != 0) {
+    indices[count++] = std::countr_zero(subset);
+    subset &= subset - 1;
+  }
+  return count;
+}
+
+}  // namespace volspline::simplex_detail
