@@ -1,0 +1,176 @@
+#include "dms_recurrence_plan.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+namespace volspline::simplex_detail {
+namespace {
+
+// The parameter interval where every λ_j(origin + s·direction) >= 0 (the chord of the frame's
+// tetrahedron), intersected with [lo, hi]; empty when lo >= hi on return.
+void clip_to_chord(const std::array<double, 4>& l, const std::array<double, 4>& m, double& lo, double& hi) {
+  for (int j = 0; j < 4; ++j) {
+    if (m[j] == 0) {
+      if (l[j] < 0) hi = lo;
+    } else if (m[j] > 0) {
+      lo = std::max(lo, -l[j] / m[j]);
+    } else {
+      hi = std::min(hi, -l[j] / m[j]);
+    }
+  }
+}
+
+}  // namespace
+
+void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const std::vector<std::array<int, 4>>& betas) {
+  const int cloud_size = degree + 1;
+  knot_count_ = 4 * cloud_size;
+  std::copy(knots, knots + knot_count_, knots_.begin());
+  lo_ = knots_[0];
+  hi_ = knots_[0];
+  for (int i = 1; i < knot_count_; ++i) {
+    lo_ = lo_.cwiseMin(knots_[i]);
+    hi_ = hi_.cwiseMax(knots_[i]);
+  }
+  KnotBinding binding;
+  const std::array<int, 4> vertices = {0, cloud_size, 2 * cloud_size, 3 * cloud_size};
+  binding.bind(knots_.data(), knot_count_, BarycentricChoice::kDmsLastOfEachCloud, cloud_size, &vertices);
+  SubsetMemo index;
+  index.reserve(expected_dms_subsets(degree));
+  nodes_.clear();
+  tops_.clear();
+  scales_.clear();
+  for (const auto& beta : betas) {
+    KnotMask mask = 0;
+    for (int c = 0; c < 4; ++c) mask |= ((KnotMask{1} << (beta[c] + 1)) - 1) << (c * cloud_size);
+    tops_.push_back(add(mask, binding, index));
+    scales_.push_back(std::abs(oriented_det(knots_[beta[0]], knots_[cloud_size + beta[1]],
+                                            knots_[2 * cloud_size + beta[2]], knots_[3 * cloud_size + beta[3]])));
+  }
+  built_ = true;
+}
+
+bool DmsRecurrencePlan::matches(const Eigen::Vector3d* knots) const {
+  return built_ && std::equal(knots, knots + knot_count_, knots_.begin());
+}
+
+// Depth first, so that a node's children precede it; returns the node of `subset`.
+int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMemo& index) {
+  if (const double* known = index.find(subset)) return static_cast<int>(*known);
+  PlanNode node;
+  node.degree = static_cast<std::int8_t>(std::popcount(subset) - 4);
+  std::array<int, 4> w{};
+  if (node.degree == 0) {
+    std::array<int, kMaxRecurrenceKnots> idx{};
+    subset_indices(subset, idx);
+    w = {idx[0], idx[1], idx[2], idx[3]};
+    node.flat = !make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], node.frame);
+    if (!node.flat) node.inverse_volume = 1.0 / std::abs(node.frame.det);
+  } else {
+    node.flat = !binding.choose(subset, nullptr, w, node.frame);
+    if (!node.flat) {
+      for (int j = 0; j < 4; ++j) node.child[j] = add(subset & ~(KnotMask{1} << w[j]), binding, index);
+    }
+  }
+  for (int j = 0; j < 4; ++j) node.w[j] = static_cast<std::int8_t>(w[j]);
+  const int position = static_cast<int>(nodes_.size());
+  nodes_.push_back(node);
+  index.store(subset, position);
+  return position;
+}
+
+void DmsRecurrencePlan::values(const Eigen::Vector3d& x, double* out) const {
+  const int count = size();
+  for (int i = 0; i < count; ++i) {
+    const PlanNode& n = nodes_[i];
+    if (n.flat) {
+      out[i] = 0;
+      continue;
+    }
+    const auto l = n.frame.lambda(x);
+    if (n.degree == 0) {
+      out[i] = half_open_contains(l, x, knots_[n.w[0]], knots_[n.w[1]], knots_[n.w[2]], knots_[n.w[3]])
+                   ? n.inverse_volume
+                   : 0.0;
+    } else {
+      double v = 0;
+      for (int j = 0; j < 4; ++j) v += l[j] * out[n.child[j]];
+      out[i] = v;
+    }
+  }
+}
+
+void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a,
+                                       double b, double* out, double* scratch) const {
+  const int count = size();
+  std::fill(out, out + count, 0.0);
+  if (!(a < b)) return;
+  double* at_lower = scratch;
+  double* at_upper = scratch + count;
+  if (direction.squaredNorm() == 0) {
+    values(origin, at_lower);
+    for (int i = 0; i < count; ++i) out[i] = at_lower[i] == 0 ? 0.0 : (b - a) * at_lower[i];
+    return;
+  }
+  // Clip [a, b] to the knots' bounding box, padded so that clipped ends lie outside every support
+  // (their boundary terms vanish), and re-parametrise about the middle (LineRecurrence).
+  const double pad = 1e-6 * (hi_ - lo_).norm() + 1e-300;
+  double t_lo = a;
+  double t_hi = b;
+  for (int k = 0; k < 3; ++k) {
+    const double lo = lo_[k] - pad;
+    const double hi = hi_[k] + pad;
+    if (direction[k] == 0) {
+      if (origin[k] < lo || origin[k] > hi) return;
+      continue;
+    }
+    double t0 = (lo - origin[k]) / direction[k];
+    double t1 = (hi - origin[k]) / direction[k];
+    if (t0 > t1) std::swap(t0, t1);
+    t_lo = std::max(t_lo, t0);
+    t_hi = std::min(t_hi, t1);
+  }
+  if (!(t_lo < t_hi)) return;
+  const double middle = 0.5 * (t_lo + t_hi);
+  const Eigen::Vector3d o = origin + middle * direction;
+  const double lower = t_lo - middle;
+  const double upper = t_hi - middle;
+  values(o + lower * direction, at_lower);
+  values(o + upper * direction, at_upper);
+  const double infinity = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < count; ++i) {
+    const PlanNode& n = nodes_[i];
+    if (n.flat) continue;
+    // Eq. 16 about the middle of the chord of W's tetrahedron (every λ_j >= 0 there), or about the
+    // point nearest W's centroid when the line misses it (LineRecurrence::compute).
+    const auto m = n.frame.mu(direction);
+    const auto l0 = n.frame.lambda(o);
+    double lo = -infinity;
+    double hi = infinity;
+    clip_to_chord(l0, m, lo, hi);
+    double shift;
+    if (lo < hi) {
+      shift = 0.5 * (lo + hi);
+    } else {
+      const Eigen::Vector3d centroid = 0.25 * (knots_[n.w[0]] + knots_[n.w[1]] + knots_[n.w[2]] + knots_[n.w[3]]);
+      shift = (centroid - o).dot(direction) / direction.squaredNorm();
+    }
+    shift = std::clamp(shift, lower, upper);
+    const auto l = n.frame.lambda(o + shift * direction);
+    if (n.degree == 0) {
+      double s_lo = lower - shift;
+      double s_hi = upper - shift;
+      clip_to_chord(l, m, s_lo, s_hi);
+      out[i] = s_hi > s_lo ? (s_hi - s_lo) * n.inverse_volume : 0.0;
+      continue;
+    }
+    double sum = 0;
+    for (int j = 0; j < 4; ++j) sum += l[j] * out[n.child[j]];
+    const double boundary = (upper - shift) * at_upper[i] - (lower - shift) * at_lower[i];
+    out[i] = (n.degree * sum + boundary) / (n.degree + 1);
+  }
+}
+
+}  // namespace volspline::simplex_detail
