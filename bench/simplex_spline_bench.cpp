@@ -84,6 +84,65 @@ void BM_DmsEvaluateWithGradient(benchmark::State& state) {
 }
 BENCHMARK(BM_DmsEvaluateWithGradient)->Arg(2)->Arg(3);
 
+// Each point in another of 16 tetrahedra (more than the basis caches plans for): every call
+// compiles its recurrence plan, as scattered points over a large domain do.
+void BM_DmsEvaluateWithGradientNewTetrahedronEachPoint(benchmark::State& state) {
+  const int degree = static_cast<int>(state.range(0));
+  std::vector<std::array<std::vector<Vector3d>, 4>> variants;
+  std::mt19937 rng(9);
+  std::normal_distribution<double> normal(0.0, 0.08);
+  const Setup& s = setup(degree);
+  for (int v = 0; v < 16; ++v) {
+    auto clouds = s.clouds;
+    for (auto& cloud : clouds) {
+      for (std::size_t i = 1; i < cloud.size(); ++i) cloud[i] += Vector3d(normal(rng), normal(rng), normal(rng)) * 0.1;
+    }
+    variants.push_back(clouds);
+  }
+  DmsTetrahedronBasis basis(degree);
+  DmsBasisValues out;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& clouds = variants[i % 16];
+    basis.evaluate(s.points[i & 4095], {clouds[0].data(), clouds[1].data(), clouds[2].data(), clouds[3].data()}, 1,
+                   out);
+    ++i;
+    benchmark::DoNotOptimize(out.values.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_DmsEvaluateWithGradientNewTetrahedronEachPoint)->Arg(2)->Arg(3);
+
+// The same scattered points with one DmsTetrahedronPlan compiled beforehand per tetrahedron (as a
+// spline volume keeps them): no recompilation.
+void BM_DmsEvaluateWithGradientFromPlans(benchmark::State& state) {
+  const int degree = static_cast<int>(state.range(0));
+  std::vector<std::array<std::vector<Vector3d>, 4>> variants;
+  std::mt19937 rng(9);
+  std::normal_distribution<double> normal(0.0, 0.08);
+  const Setup& s = setup(degree);
+  std::vector<DmsTetrahedronPlan> plans;
+  for (int v = 0; v < 16; ++v) {
+    auto clouds = s.clouds;
+    for (auto& cloud : clouds) {
+      for (std::size_t i = 1; i < cloud.size(); ++i) cloud[i] += Vector3d(normal(rng), normal(rng), normal(rng)) * 0.1;
+    }
+    plans.emplace_back(degree, std::array<const Vector3d*, 4>{clouds[0].data(), clouds[1].data(), clouds[2].data(),
+                                                               clouds[3].data()});
+  }
+  DmsTetrahedronBasis basis(degree);
+  DmsBasisValues out;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    basis.evaluate(s.points[i & 4095], plans[i % 16], 1, out);
+    ++i;
+    benchmark::DoNotOptimize(out.values.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.SetLabel(std::to_string(plans[0].memory_bytes() / 1024) + " KiB per plan");
+}
+BENCHMARK(BM_DmsEvaluateWithGradientFromPlans)->Arg(2)->Arg(3);
+
 void BM_UnmemoisedValuesPerBeta(benchmark::State& state) {
   const Setup& s = setup(static_cast<int>(state.range(0)));
   std::size_t i = 0;

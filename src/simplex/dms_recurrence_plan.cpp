@@ -22,9 +22,58 @@ void clip_to_chord(const std::array<double, 4>& l, const std::array<double, 4>& 
   }
 }
 
+// W for a subset of a DMS tetrahedron's knots (cloud c holds knots c(n+1)..c(n+1)+n): the last
+// knot of each cloud, (p_i, q_j, r_k, s_l) for V_β — non-degenerate by the DMS conditions (§3.2)
+// and, with the sub-knots near their vertex, close to the largest |det| of the subset. A subset
+// that misses a cloud completes the last knots of its clouds greedily: the knot farthest from the
+// point, line or plane of those taken (column pivoting, a cheap stand-in for the largest |det|:
+// the last pick has |λ| <= 1 at every knot of the subset). The four of largest |det| when the
+// greedy four are degenerate (a flat subset then has none).
+bool choose_dms_knots(const std::array<Eigen::Vector3d, kMaxRecurrenceKnots>& knots, int cloud_size, KnotMask subset,
+                      std::array<int, 4>& w, BarycentricFrame& frame, const KnotBinding& fallback) {
+  const KnotMask cloud = (KnotMask{1} << cloud_size) - 1;
+  int taken = 0;
+  KnotMask used = 0;
+  for (int c = 0; c < 4; ++c) {
+    const KnotMask members = (subset >> (c * cloud_size)) & cloud;
+    if (members != 0) {
+      w[taken] = c * cloud_size + 31 - std::countl_zero(members);
+      used |= KnotMask{1} << w[taken];
+      ++taken;
+    }
+  }
+  for (; taken < 4; ++taken) {
+    double best = 0;
+    int pick = -1;
+    for (KnotMask rest = subset & ~used; rest != 0; rest &= rest - 1) {
+      const int t = std::countr_zero(rest);
+      const Eigen::Vector3d r = knots[t] - knots[w[0]];
+      double measure = 0;
+      if (taken == 1) {
+        measure = r.squaredNorm();
+      } else if (taken == 2) {
+        measure = (knots[w[1]] - knots[w[0]]).cross(r).squaredNorm();
+      } else {
+        const double det = (knots[w[1]] - knots[w[0]]).cross(knots[w[2]] - knots[w[0]]).dot(r);
+        measure = det * det;
+      }
+      if (measure > best) {
+        best = measure;
+        pick = t;
+      }
+    }
+    if (pick < 0) break;
+    w[taken] = pick;
+    used |= KnotMask{1} << pick;
+  }
+  if (taken == 4 && make_frame(knots[w[0]], knots[w[1]], knots[w[2]], knots[w[3]], frame)) return true;
+  return fallback.choose(subset, nullptr, w, frame);
+}
+
 }  // namespace
 
-void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const std::vector<std::array<int, 4>>& betas) {
+void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const std::vector<std::array<int, 4>>& betas,
+                              SubsetMemo& index) {
   const int cloud_size = degree + 1;
   knot_count_ = 4 * cloud_size;
   std::copy(knots, knots + knot_count_, knots_.begin());
@@ -34,11 +83,13 @@ void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const st
     lo_ = lo_.cwiseMin(knots_[i]);
     hi_ = hi_.cwiseMax(knots_[i]);
   }
+  cloud_size_ = cloud_size;
+  // The largest-|det| choice only for degenerate greedy picks (invalid or repeated knots).
   KnotBinding binding;
   const std::array<int, 4> vertices = {0, cloud_size, 2 * cloud_size, 3 * cloud_size};
-  binding.bind(knots_.data(), knot_count_, BarycentricChoice::kDmsLastOfEachCloud, cloud_size, &vertices);
-  SubsetMemo index;
+  binding.bind(knots_.data(), knot_count_, BarycentricChoice::kLargest, &vertices);
   index.reserve(expected_dms_subsets(degree));
+  index.clear();
   nodes_.clear();
   tops_.clear();
   scales_.clear();
@@ -69,7 +120,7 @@ int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMe
     node.flat = !make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], node.frame);
     if (!node.flat) node.inverse_volume = 1.0 / std::abs(node.frame.det);
   } else {
-    node.flat = !binding.choose(subset, nullptr, w, node.frame);
+    node.flat = !choose_dms_knots(knots_, cloud_size_, subset, w, node.frame, binding);
     if (!node.flat) {
       for (int j = 0; j < 4; ++j) node.child[j] = add(subset & ~(KnotMask{1} << w[j]), binding, index);
     }
@@ -137,8 +188,14 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
   const Eigen::Vector3d o = origin + middle * direction;
   const double lower = t_lo - middle;
   const double upper = t_hi - middle;
-  values(o + lower * direction, at_lower);
-  values(o + upper * direction, at_upper);
+  // The ends of a line clipped by the padded box lie outside every support: no values to compute.
+  for (const auto& [end, at] : {std::pair{o + lower * direction, at_lower}, std::pair{o + upper * direction, at_upper}}) {
+    if (outside_box(end)) {
+      std::fill(at, at + count, 0.0);
+    } else {
+      values(end, at);
+    }
+  }
   const double infinity = std::numeric_limits<double>::infinity();
   for (int i = 0; i < count; ++i) {
     const PlanNode& n = nodes_[i];
@@ -147,6 +204,13 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
     // point nearest W's centroid when the line misses it (LineRecurrence::compute).
     const auto m = n.frame.mu(direction);
     const auto l0 = n.frame.lambda(o);
+    if (n.degree == 0) {
+      double s_lo = lower;
+      double s_hi = upper;
+      clip_to_chord(l0, m, s_lo, s_hi);
+      out[i] = s_hi > s_lo ? (s_hi - s_lo) * n.inverse_volume : 0.0;
+      continue;
+    }
     double lo = -infinity;
     double hi = infinity;
     clip_to_chord(l0, m, lo, hi);
@@ -158,14 +222,8 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
       shift = (centroid - o).dot(direction) / direction.squaredNorm();
     }
     shift = std::clamp(shift, lower, upper);
-    const auto l = n.frame.lambda(o + shift * direction);
-    if (n.degree == 0) {
-      double s_lo = lower - shift;
-      double s_hi = upper - shift;
-      clip_to_chord(l, m, s_lo, s_hi);
-      out[i] = s_hi > s_lo ? (s_hi - s_lo) * n.inverse_volume : 0.0;
-      continue;
-    }
+    std::array<double, 4> l;
+    for (int j = 0; j < 4; ++j) l[j] = l0[j] + shift * m[j];
     double sum = 0;
     for (int j = 0; j < 4; ++j) sum += l[j] * out[n.child[j]];
     const double boundary = (upper - shift) * at_upper[i] - (lower - shift) * at_lower[i];

@@ -1,7 +1,8 @@
 #pragma once
 // The recurrence of eq. 1 for all basis functions of one DMS tetrahedron, compiled once per knot
-// configuration: in DMS mode (BarycentricChoice::kDmsLastOfEachCloud) the four knots W of every
-// subset, and so their barycentric frames, do not depend on the point. The plan lists the subsets
+// configuration: the four knots W of every subset (the last knot of each cloud, completed
+// greedily where a cloud is missing; dms_recurrence_plan.cpp), and so their barycentric frames,
+// do not depend on the point. The plan lists the subsets
 // the V_β reach in an order where children come first; evaluating at a point is one pass over it
 // (barycentric coordinates, a weighted sum of two to four children, or the half-open test at the
 // leaves), without choices, hashing or allocation.
@@ -25,11 +26,23 @@ struct PlanNode {
 
 class DmsRecurrencePlan {
  public:
-  /// Compiles the plan for the knots t_{c,i} = knots[c(n+1) + i] and the multi-indices `betas`.
-  void build(const Eigen::Vector3d* knots, int degree, const std::vector<std::array<int, 4>>& betas);
+  /// Compiles the plan for the knots t_{c,i} = knots[c(n+1) + i] and the multi-indices `betas`;
+  /// `index` is scratch (subset -> node while building).
+  void build(const Eigen::Vector3d* knots, int degree, const std::vector<std::array<int, 4>>& betas,
+             SubsetMemo& index);
   /// Whether the plan was built for exactly these knot coordinates.
   bool matches(const Eigen::Vector3d* knots) const;
   bool built() const { return built_; }
+  /// Releases spare capacity (for plans kept per tetrahedron).
+  void shrink_to_fit() {
+    nodes_.shrink_to_fit();
+    tops_.shrink_to_fit();
+    scales_.shrink_to_fit();
+  }
+  std::size_t memory_bytes() const {
+    return sizeof(*this) + nodes_.capacity() * sizeof(PlanNode) +
+           (tops_.capacity() + scales_.capacity()) * sizeof(double);
+  }
 
   int size() const { return static_cast<int>(nodes_.size()); }
   const PlanNode& node(int i) const { return nodes_[i]; }
@@ -55,6 +68,7 @@ class DmsRecurrencePlan {
   std::vector<double> scales_;
   std::array<Eigen::Vector3d, kMaxRecurrenceKnots> knots_{};
   int knot_count_ = 0;
+  int cloud_size_ = 0;
   Eigen::Vector3d lo_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d hi_ = Eigen::Vector3d::Zero();
   bool built_ = false;

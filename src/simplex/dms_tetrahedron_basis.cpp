@@ -1,5 +1,6 @@
 #include "volspline/simplex/dms_tetrahedron_basis.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -30,12 +31,16 @@ class DmsRecurrenceState {
     }
     last_ = (last_ + 1) % kCachedPlans;
     DmsRecurrencePlan& fresh = plans_[last_];
-    fresh.build(knots_.data(), degree_, betas);
-    if (node_values_.size() < static_cast<std::size_t>(fresh.size())) {
-      node_values_.resize(fresh.size());
-      scratch_.resize(2 * static_cast<std::size_t>(fresh.size()));
-    }
+    fresh.build(knots_.data(), degree_, betas, index_);
     return fresh;
+  }
+
+  // Room for the node values of `plan` (grows only for a plan larger than any before).
+  void fit(const DmsRecurrencePlan& plan) {
+    if (node_values_.size() < static_cast<std::size_t>(plan.size())) {
+      node_values_.resize(plan.size());
+      scratch_.resize(2 * static_cast<std::size_t>(plan.size()));
+    }
   }
 
   double* node_values() { return node_values_.data(); }
@@ -48,6 +53,7 @@ class DmsRecurrenceState {
   std::array<Eigen::Vector3d, kMaxRecurrenceKnots> knots_{};
   std::vector<double> node_values_;
   std::vector<double> scratch_;
+  SubsetMemo index_;
 };
 
 }  // namespace simplex_detail
@@ -93,12 +99,31 @@ DmsTetrahedronBasis& DmsTetrahedronBasis::operator=(DmsTetrahedronBasis&&) noexc
 void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const std::array<const Eigen::Vector3d*, 4>& clouds,
                                    int order, DmsBasisValues& out) {
   if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
+  evaluate_plan(x, state_->plan(clouds, multi_indices_), order, out);
+}
+
+void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const DmsTetrahedronPlan& plan, int order,
+                                   DmsBasisValues& out) {
+  if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
+  evaluate_plan(x, checked(plan), order, out);
+}
+
+const simplex_detail::DmsRecurrencePlan& DmsTetrahedronBasis::checked(const DmsTetrahedronPlan& plan) const {
+  if (plan.degree() != degree_ || !plan.plan_) {
+    throw InvalidInput("DMS plan of degree " + std::to_string(plan.degree()) + " for a basis of degree " +
+                       std::to_string(degree_));
+  }
+  return *plan.plan_;
+}
+
+void DmsTetrahedronBasis::evaluate_plan(const Eigen::Vector3d& x, const simplex_detail::DmsRecurrencePlan& plan,
+                                        int order, DmsBasisValues& out) {
   const std::size_t count = multi_indices_.size();
   out.values.assign(count, 0.0);
   out.gradients.assign(order >= 1 ? count : 0, Eigen::Vector3d::Zero());
   out.hessians.assign(order >= 2 ? count : 0, Eigen::Matrix3d::Zero());
-  const auto& plan = state_->plan(clouds, multi_indices_);
   if (plan.outside_box(x)) return;
+  state_->fit(plan);
   double* m = state_->node_values();
   plan.values(x, m);
   const int n = degree_;
@@ -130,15 +155,57 @@ void DmsTetrahedronBasis::line_integrals(const Eigen::Vector3d& origin, const Ei
                                          double b, const std::array<const Eigen::Vector3d*, 4>& clouds,
                                          std::vector<double>& out) {
   if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
+  line_integrals_plan(origin, direction, a, b, state_->plan(clouds, multi_indices_), out);
+}
+
+void DmsTetrahedronBasis::line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a,
+                                         double b, const DmsTetrahedronPlan& plan, std::vector<double>& out) {
+  if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
+  line_integrals_plan(origin, direction, a, b, checked(plan), out);
+}
+
+void DmsTetrahedronBasis::line_integrals_plan(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                              double a, double b, const simplex_detail::DmsRecurrencePlan& plan,
+                                              std::vector<double>& out) {
   const std::size_t count = multi_indices_.size();
   out.assign(count, 0.0);
-  const auto& plan = state_->plan(clouds, multi_indices_);
+  state_->fit(plan);
   double* integrals = state_->node_values();
   plan.line_integrals(origin, direction, a, b, integrals, state_->scratch());
   for (std::size_t i = 0; i < count; ++i) {
     const int top = plan.top(static_cast<int>(i));
     if (integrals[top] != 0) out[i] = plan.scale(static_cast<int>(i)) * integrals[top];
   }
+}
+
+DmsTetrahedronPlan::DmsTetrahedronPlan() = default;
+DmsTetrahedronPlan::~DmsTetrahedronPlan() = default;
+DmsTetrahedronPlan::DmsTetrahedronPlan(DmsTetrahedronPlan&&) noexcept = default;
+DmsTetrahedronPlan& DmsTetrahedronPlan::operator=(DmsTetrahedronPlan&&) noexcept = default;
+
+DmsTetrahedronPlan::DmsTetrahedronPlan(int degree, const std::array<const Eigen::Vector3d*, 4>& clouds) {
+  if (degree < 0 || degree > kMaxSimplexSplineDegree) {
+    throw InvalidInput("DMS degree must be 0.." + std::to_string(kMaxSimplexSplineDegree) + ", got " +
+                       std::to_string(degree));
+  }
+  std::array<Eigen::Vector3d, simplex_detail::kMaxRecurrenceKnots> knots{};
+  for (int c = 0; c < 4; ++c) std::copy(clouds[c], clouds[c] + degree + 1, knots.begin() + c * (degree + 1));
+  plan_ = std::make_unique<simplex_detail::DmsRecurrencePlan>();
+  simplex_detail::SubsetMemo index;
+  plan_->build(knots.data(), degree, dms_multi_indices(degree), index);
+  plan_->shrink_to_fit();
+  degree_ = degree;
+}
+
+bool DmsTetrahedronPlan::matches(const std::array<const Eigen::Vector3d*, 4>& clouds) const {
+  if (!plan_) return false;
+  std::array<Eigen::Vector3d, simplex_detail::kMaxRecurrenceKnots> knots{};
+  for (int c = 0; c < 4; ++c) std::copy(clouds[c], clouds[c] + degree_ + 1, knots.begin() + c * (degree_ + 1));
+  return plan_->matches(knots.data());
+}
+
+std::size_t DmsTetrahedronPlan::memory_bytes() const {
+  return sizeof(*this) + (plan_ ? plan_->memory_bytes() : 0);
 }
 
 }  // namespace volspline

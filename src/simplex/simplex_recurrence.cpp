@@ -15,10 +15,9 @@ constexpr double kPruneMargin = 1e-9;
 
 }  // namespace
 
-bool KnotBinding::bind(const Eigen::Vector3d* knots, int count, BarycentricChoice choice, int cloud_size,
+bool KnotBinding::bind(const Eigen::Vector3d* knots, int count, BarycentricChoice choice,
                        const std::array<int, 4>* reference) {
   count_ = count;
-  cloud_size_ = cloud_size;
   choice_ = choice;
   std::copy(knots, knots + count, knots_.begin());
   bool found = false;
@@ -108,20 +107,6 @@ bool KnotBinding::choose(KnotMask subset, const Eigen::Vector3d* x, std::array<i
   if (custom_ != nullptr) {
     if (!(*custom_)(subset, w)) return false;
     return make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], frame);
-  }
-  if (choice_ == BarycentricChoice::kDmsLastOfEachCloud) {
-    const KnotMask cloud = bit(cloud_size_) - 1;
-    bool all_clouds = true;
-    for (int c = 0; c < 4 && all_clouds; ++c) {
-      const KnotMask members = (subset >> (c * cloud_size_)) & cloud;
-      if (members == 0) {
-        all_clouds = false;
-      } else {
-        w[c] = c * cloud_size_ + 31 - std::countl_zero(members);
-      }
-    }
-    if (all_clouds && make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], frame)) return true;
-    return choose_largest(subset, nullptr, w, frame);
   }
   return choose_largest(subset, choice_ == BarycentricChoice::kContainingThenLargest ? x : nullptr, w, frame);
 }

@@ -72,10 +72,6 @@ enum class BarycentricChoice {
   /// The largest |det|: independent of the point, and every knot of the subset (so every point of
   /// its hull, the support) has |λ_j| <= 1.
   kLargest,
-  /// Knot clouds of a DMS tetrahedron (cloud c holds bits c(n+1)..c(n+1)+n): the last knot of each
-  /// cloud, (p_i, q_j, r_k, s_l) for V_β — non-degenerate by the DMS conditions (§3.2) and close
-  /// to the largest |det|; kLargest for subsets that miss a cloud.
-  kDmsLastOfEachCloud,
 };
 
 /// A test's own choice of W (returns false for "no independent four"); replaces the choice rule.
@@ -87,10 +83,10 @@ using CustomChoice = std::function<bool(KnotMask subset, std::array<int, 4>& w)>
 /// intersection of four slabs min..max of its knots' coordinates.
 class KnotBinding {
  public:
-  /// `cloud_size` is n + 1 for kDmsLastOfEachCloud (ignored otherwise). `reference` (four knot
+  /// `reference` (four knot
   /// indices) fixes the pruning frame; empty picks the largest |det| four. Returns false when
   /// every four knots are coplanar (then every subset is flat and every spline 0).
-  bool bind(const Eigen::Vector3d* knots, int count, BarycentricChoice choice, int cloud_size,
+  bool bind(const Eigen::Vector3d* knots, int count, BarycentricChoice choice,
             const std::array<int, 4>* reference = nullptr);
 
   const Eigen::Vector3d& knot(int i) const { return knots_[i]; }
@@ -113,7 +109,6 @@ class KnotBinding {
   std::array<Eigen::Vector3d, kMaxRecurrenceKnots> knots_{};
   std::array<std::array<double, 4>, kMaxRecurrenceKnots> coordinates_{};
   int count_ = 0;
-  int cloud_size_ = 0;
   BarycentricChoice choice_ = BarycentricChoice::kLargest;
   BarycentricFrame reference_;
   const CustomChoice* custom_ = nullptr;

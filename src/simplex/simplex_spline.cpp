@@ -135,7 +135,7 @@ double simplex_spline_value(const Eigen::Vector3d& x, std::span<const Eigen::Vec
   std::array<Eigen::Vector3d, kMaxTrivariateKnots> copy{};
   std::copy(knots.begin(), knots.end(), copy.begin());
   KnotBinding binding;
-  binding.bind(copy.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest, 0);
+  binding.bind(copy.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest);
   return reference_value(x, copy, binding, all_knots(knots.size()));
 }
 
@@ -143,7 +143,7 @@ SimplexSplineJet simplex_spline_jet(const Eigen::Vector3d& x, std::span<const Ei
   check_knot_count(knots.size());
   if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
   KnotBinding binding;
-  binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest, 0);
+  binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest);
   simplex_detail::PointRecurrence recurrence;
   recurrence.attach(&binding, 1 << knots.size());
   recurrence.set_point(x);
@@ -154,7 +154,7 @@ double simplex_spline_directional_derivative(const Eigen::Vector3d& x, std::span
                                              const Eigen::Vector3d& v) {
   check_knot_count(knots.size());
   KnotBinding binding;
-  binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest, 0);
+  binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest);
   simplex_detail::PointRecurrence recurrence;
   recurrence.attach(&binding, 1 << knots.size());
   recurrence.set_point(x);
@@ -176,7 +176,7 @@ double simplex_spline_line_integral(const Eigen::Vector3d& origin, const Eigen::
   check_knot_count(knots.size());
   if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
   KnotBinding binding;
-  binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kLargest, 0);
+  binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kLargest);
   simplex_detail::LineRecurrence recurrence;
   recurrence.attach(&binding, 1 << knots.size());
   recurrence.set_line(origin, direction, a, b);

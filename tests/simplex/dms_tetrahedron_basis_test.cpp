@@ -191,8 +191,44 @@ TEST(DmsTetrahedronBasis, ReusedObjectForgetsThePreviousTetrahedron) {
     EXPECT_EQ(a.gradients[i], Vector3d::Zero());
   }
   EXPECT_THROW(basis.evaluate(x, first.pointers(), 3, a), InvalidInput);
+  // More tetrahedra than the basis keeps compiled plans for, then the first again.
+  for (int k = 0; k < 12; ++k) {
+    const Clouds other = make_clouds(3, 0.1, rng);
+    basis.evaluate(x, other.pointers(), 1, b);
+  }
+  basis.evaluate(x, first.pointers(), 1, again);
+  basis.evaluate(Vector3d(0.2, 0.3, 0.25), first.pointers(), 1, a);
+  EXPECT_EQ(a.values, again.values);
   std::vector<double> integrals;
   EXPECT_THROW(basis.line_integrals(x, Vector3d::UnitX(), 1, 0, first.pointers(), integrals), InvalidInput);
+}
+
+TEST(DmsTetrahedronBasis, PlansCompiledBeforehandGiveTheSameBasis) {
+  std::mt19937 rng(53);
+  const Clouds clouds = make_clouds(2, 0.1, rng);
+  const DmsTetrahedronPlan plan(2, clouds.pointers());
+  EXPECT_TRUE(plan.matches(clouds.pointers()));
+  EXPECT_FALSE(plan.matches(make_clouds(2, 0.1, rng).pointers()));
+  EXPECT_GT(plan.memory_bytes(), 0u);
+  DmsTetrahedronBasis basis(2);
+  DmsBasisValues from_plan;
+  DmsBasisValues from_clouds;
+  std::vector<double> integrals_from_plan;
+  std::vector<double> integrals_from_clouds;
+  for (int trial = 0; trial < 5; ++trial) {
+    const Vector3d x = random_point(rng);
+    basis.evaluate(x, plan, 2, from_plan);
+    basis.evaluate(x, clouds.pointers(), 2, from_clouds);
+    EXPECT_EQ(from_plan.values, from_clouds.values);
+    EXPECT_EQ(from_plan.gradients, from_clouds.gradients);
+    basis.line_integrals(x, Vector3d(0.3, 1, -0.2), -1, 1, plan, integrals_from_plan);
+    basis.line_integrals(x, Vector3d(0.3, 1, -0.2), -1, 1, clouds.pointers(), integrals_from_clouds);
+    EXPECT_EQ(integrals_from_plan, integrals_from_clouds);
+  }
+  DmsTetrahedronBasis cubic(3);
+  EXPECT_THROW(cubic.evaluate(Vector3d::Zero(), plan, 0, from_plan), InvalidInput);
+  EXPECT_THROW(basis.evaluate(Vector3d::Zero(), DmsTetrahedronPlan(), 0, from_plan), InvalidInput);
+  EXPECT_THROW(DmsTetrahedronPlan(6, clouds.pointers()), InvalidInput);
 }
 
 }  // namespace

@@ -204,7 +204,7 @@ TEST(SimplexSpline, HalfOpenTrianglesOfATriangulationPartitionTheSquare) {
 // comparison is not one of lost digits).
 double value_with_choice(const Vector3d& x, const Knots& knots, bool first_independent, unsigned seed) {
   simplex_detail::KnotBinding binding;
-  binding.bind(knots.data(), static_cast<int>(knots.size()), simplex_detail::BarycentricChoice::kLargest, 0);
+  binding.bind(knots.data(), static_cast<int>(knots.size()), simplex_detail::BarycentricChoice::kLargest);
   const simplex_detail::CustomChoice choice = [&](simplex_detail::KnotMask subset, std::array<int, 4>& w) {
     std::array<int, simplex_detail::kMaxRecurrenceKnots> idx{};
     const int m = simplex_detail::subset_indices(subset, idx);
