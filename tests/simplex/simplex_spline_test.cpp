@@ -110,10 +110,10 @@ double line_integral_by_quadrature(const Vector3d& o, const Vector3d& d, double 
 
 // ∫_{R^3} M exactly up to rounding: G(x) = ∫∫ M(x, y, z) dy dz is a univariate spline of degree
 // n + 2 with breaks at the knots' x (the projection of the simplex measure onto a line), so
-// 4-point Gauss per knot interval is exact for n <= 4 (sic: degree <= 7 needs n + 2 <= 7); for
-// fixed x, L(y) = ∫ M(x, y, z) dz is a polynomial of degree n + 1 between the crossings of the
-// vertical line with the lines through two projected knots; L itself comes from the line
-// integral recurrence along z (not the projection identity).
+// 4-point Gauss per knot interval is exact for n + 2 <= 7; for fixed x, L(y) = ∫ M(x, y, z) dz is
+// a polynomial of degree n + 1 between the crossings of the vertical line with the lines through
+// two projected knots; L itself comes from the line-integral recurrence along z (not the
+// projection identity).
 double integral_over_space(const Knots& knots) {
   std::vector<double> xs;
   double ylo = kInfinity;
