@@ -65,38 +65,57 @@ bool KnotBinding::choose_largest(KnotMask subset, const Eigen::Vector3d* x, std:
                                  BarycentricFrame& frame) const {
   std::array<int, kMaxRecurrenceKnots> index{};
   const int m = subset_indices(subset, index);
+  // Every four with its |det|; at most C(9, 4) = 126 when x matters (single splines).
+  struct Candidate {
+    double size;
+    std::array<int, 4> w;
+  };
+  constexpr int kMaxCandidates = 126;
+  std::array<Candidate, kMaxCandidates> candidates;
+  const bool rank_by_containment = x != nullptr && m <= 9;
+  int count = 0;
   double best = 0;
-  bool best_contains = false;
-  bool found = false;
   for (int i0 = 0; i0 < m; ++i0) {
     for (int i1 = i0 + 1; i1 < m; ++i1) {
       for (int i2 = i1 + 1; i2 < m; ++i2) {
         for (int i3 = i2 + 1; i3 < m; ++i3) {
-          const Eigen::Vector3d& a = knots_[index[i0]];
-          const Eigen::Vector3d& b = knots_[index[i1]];
-          const Eigen::Vector3d& c = knots_[index[i2]];
-          const Eigen::Vector3d& d = knots_[index[i3]];
-          const double size = std::abs(oriented_det(a, b, c, d));
+          const std::array<int, 4> q = {index[i0], index[i1], index[i2], index[i3]};
+          const double size = std::abs(oriented_det(knots_[q[0]], knots_[q[1]], knots_[q[2]], knots_[q[3]]));
           if (size == 0) continue;
-          bool contains = false;
-          if (x != nullptr) {
-            // Only a preference for stability: floating barycentrics suffice.
+          if (rank_by_containment) {
+            candidates[count++] = {size, q};
+          } else if (size > best) {
+            // The exact flatness check only for a four that would win.
             BarycentricFrame candidate;
-            if (!make_frame(a, b, c, d, candidate)) continue;
-            const auto l = candidate.lambda(*x);
-            contains = l[0] >= 0 && l[1] >= 0 && l[2] >= 0 && l[3] >= 0;
+            if (!make_frame(knots_[q[0]], knots_[q[1]], knots_[q[2]], knots_[q[3]], candidate)) continue;
+            best = size;
+            w = q;
+            frame = candidate;
           }
-          if (found && (contains < best_contains || (contains == best_contains && size <= best))) continue;
-          // The exact check only for a candidate that would win.
-          BarycentricFrame candidate;
-          if (!make_frame(a, b, c, d, candidate)) continue;
-          found = true;
-          best = size;
-          best_contains = contains;
-          w = {index[i0], index[i1], index[i2], index[i3]};
-          frame = candidate;
         }
       }
+    }
+  }
+  if (!rank_by_containment) return best > 0;
+  // By decreasing |det|, the first whose tetrahedron contains x (floating barycentrics suffice:
+  // this is only a preference for stability), else the largest.
+  std::sort(candidates.begin(), candidates.begin() + count,
+            [](const Candidate& a, const Candidate& b) { return a.size > b.size; });
+  bool found = false;
+  for (int c = 0; c < count; ++c) {
+    const auto& q = candidates[c].w;
+    BarycentricFrame candidate;
+    if (!make_frame(knots_[q[0]], knots_[q[1]], knots_[q[2]], knots_[q[3]], candidate)) continue;
+    if (!found) {
+      found = true;
+      w = q;
+      frame = candidate;
+    }
+    const auto l = candidate.lambda(*x);
+    if (l[0] >= 0 && l[1] >= 0 && l[2] >= 0 && l[3] >= 0) {
+      w = q;
+      frame = candidate;
+      return true;
     }
   }
   return found;

@@ -413,7 +413,7 @@ TEST(SimplexSpline, LineIntegralsAgreeWithProjectionAndQuadrature) {
   std::normal_distribution<double> normal(0.0, 1.0);
   for (int n = 0; n <= 5; ++n) {
     const Knots knots = random_knots(rng, n + 4);
-    for (int trial = 0; trial < 3; ++trial) {
+    for (int trial = 0; trial < (n < 5 ? 3 : 1); ++trial) {
       const Vector3d x = random_point_in_hull(rng, knots);
       const Vector3d d = Vector3d(normal(rng), normal(rng), normal(rng)) * (trial + 0.5);
       const double full = simplex_spline_line_integral(x, d, -kInfinity, kInfinity, knots);
