@@ -111,6 +111,7 @@ bool DmsRecurrencePlan::matches(const Eigen::Vector3d* knots) const {
 int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMemo& index) {
   if (const double* known = index.find(subset)) return static_cast<int>(*known);
   PlanNode node;
+  node.mask = subset;
   node.degree = static_cast<std::int8_t>(std::popcount(subset) - 4);
   std::array<int, 4> w{};
   if (node.degree == 0) {
@@ -199,7 +200,10 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
   const double infinity = std::numeric_limits<double>::infinity();
   for (int i = 0; i < count; ++i) {
     const PlanNode& n = nodes_[i];
-    if (n.flat) continue;
+    if (n.flat) {
+      out[i] = flat_line_integral(knots_.data(), n.mask, o, direction, lower, upper);
+      continue;
+    }
     // Eq. 16 about the middle of the chord of W's tetrahedron (every λ_j >= 0 there), or about the
     // point nearest W's centroid when the line misses it (LineRecurrence::compute).
     const auto m = n.frame.mu(direction);

@@ -17,10 +17,11 @@ namespace volspline::simplex_detail {
 
 struct PlanNode {
   BarycentricFrame frame;                        // of W (a leaf: of its four knots)
-  std::array<std::int32_t, 4> child{-1, -1, -1, -1};  // node of subset \ w_j; -1: a flat child (0)
+  std::array<std::int32_t, 4> child{-1, -1, -1, -1};  // node of subset \ w_j (-1 in a flat node)
   std::array<std::int8_t, 4> w{};                // knot indices of W
+  KnotMask mask = 0;                             // the subset
   std::int8_t degree = 0;
-  bool flat = false;                             // no four independent knots: M = 0
+  bool flat = false;  // no four independent knots: M = 0 pointwise, a measure on a plane
   double inverse_volume = 0;                     // a leaf's 1/|det|
 };
 

@@ -187,6 +187,44 @@ void SubsetMemo::grow() {
   }
 }
 
+double flat_line_integral(const Eigen::Vector3d* knots, KnotMask subset, const Eigen::Vector3d& origin,
+                          const Eigen::Vector3d& direction, double lo, double hi) {
+  std::array<int, kMaxRecurrenceKnots> idx{};
+  const int m = subset_indices(subset, idx);
+  if (m > kMaxSimplexSplineDegree + 5) return 0;
+  // The plane through the first knot and the two that span the largest triangle with it.
+  const Eigen::Vector3d& a = knots[idx[0]];
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d edge = Eigen::Vector3d::Zero();
+  for (int i = 1; i < m; ++i) {
+    for (int j = i + 1; j < m; ++j) {
+      const Eigen::Vector3d n = (knots[idx[i]] - a).cross(knots[idx[j]] - a);
+      if (n.squaredNorm() > normal.squaredNorm()) {
+        normal = n;
+        edge = knots[idx[i]] - a;
+      }
+    }
+  }
+  if (normal.squaredNorm() == 0) return 0;
+  const Eigen::Vector3d unit_normal = normal.normalized();
+  const double across = direction.dot(unit_normal);
+  if (across == 0) return 0;
+  const double s = (a - origin).dot(unit_normal) / across;
+  if (!(s >= lo && s < hi)) return 0;
+  const Eigen::Vector3d e1 = edge.normalized();
+  const Eigen::Vector3d e2 = unit_normal.cross(e1);
+  std::array<Eigen::Vector2d, kMaxSimplexSplineDegree + 5> planar;
+  for (int i = 0; i < m; ++i) {
+    const Eigen::Vector3d r = knots[idx[i]] - a;
+    planar[i] = Eigen::Vector2d(r.dot(e1), r.dot(e2));
+  }
+  const Eigen::Vector3d r = origin + s * direction - a;
+  const double density =
+      bivariate_simplex_spline_value(Eigen::Vector2d(r.dot(e1), r.dot(e2)),
+                                     std::span<const Eigen::Vector2d>(planar.data(), static_cast<std::size_t>(m)));
+  return density / ((m - 3) * std::abs(across));
+}
+
 int expected_dms_subsets(int degree) {
   // Counted for generic knot clouds (docs/simplex-splines.md); the memo grows if a configuration
   // reaches more.
@@ -376,10 +414,10 @@ double LineRecurrence::compute(KnotMask subset) {
     subset_indices(subset, idx);
     w = {idx[0], idx[1], idx[2], idx[3]};
     if (!make_frame(binding_->knot(w[0]), binding_->knot(w[1]), binding_->knot(w[2]), binding_->knot(w[3]), frame)) {
-      return 0;
+      return flat_line_integral(&binding_->knot(0), subset, origin_, direction_, lower_, upper_);
     }
   } else if (!binding_->choose(subset, nullptr, w, frame)) {
-    return 0;
+    return flat_line_integral(&binding_->knot(0), subset, origin_, direction_, lower_, upper_);
   }
   // Eq. 16 holds about any point of the line; it is applied about the middle of the chord of W's
   // tetrahedron (when the line meets it), where every λ_j >= 0 and the sum does not cancel, or

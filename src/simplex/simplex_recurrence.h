@@ -58,11 +58,32 @@ bool exactly_collinear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const
 bool make_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                 const Eigen::Vector3d& d, BarycentricFrame& frame);
 
-/// The half-open rule for x with barycentric coordinates `lambda` in `frame` (of a, b, c, d):
+/// The half-open rule for x with barycentric coordinates `lambda` with respect to (a, b, c, d):
 /// decided by the signs of lambda where they are clearly away from 0, by the exact predicates
-/// (in_half_open_tetrahedron) otherwise.
-bool half_open_contains(const std::array<double, 4>& lambda, const Eigen::Vector3d& x, const Eigen::Vector3d& a,
-                        const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d);
+/// (in_half_open_tetrahedron) otherwise. The rounding error of a barycentric coordinate is a few
+/// units in the last place times the tetrahedron's aspect ratio; 1e-9 leaves room for aspect
+/// ratios up to about 1e6.
+inline bool half_open_contains(const std::array<double, 4>& lambda, const Eigen::Vector3d& x,
+                               const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                               const Eigen::Vector3d& d) {
+  constexpr double kUndecided = 1e-9;
+  bool clearly_inside = true;
+  for (const double l : lambda) {
+    if (l < -kUndecided) return false;
+    if (l <= kUndecided) clearly_inside = false;
+  }
+  return clearly_inside || in_half_open_tetrahedron(x, a, b, c, d);
+}
+
+/// ∫_lo^hi of M(origin + s·direction | subset) ds for a flat subset (all knots on one plane Π):
+/// M is then a measure on Π, with area density M_2(y | subset)/(m + 1) (M_2 the bivariate simplex
+/// spline of the knots in orthonormal coordinates of Π, m = #knots - 4; both are images of the
+/// simplex measure, normalised as in simplex_spline.h), so the integral is that density at the
+/// crossing y of the line with Π divided by |direction · unit normal|. 0 for collinear knots, a line
+/// parallel to Π, or a crossing outside [lo, hi). Eq. 16 needs these: its integration by parts
+/// takes the derivative of M as a distribution, whose flat parts are where M jumps.
+double flat_line_integral(const Eigen::Vector3d* knots, KnotMask subset, const Eigen::Vector3d& origin,
+                          const Eigen::Vector3d& direction, double lo, double hi);
 
 /// How eq. 1 picks its four knots W in a subset.
 enum class BarycentricChoice {

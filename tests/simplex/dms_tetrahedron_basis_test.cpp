@@ -142,6 +142,42 @@ TEST(DmsTetrahedronBasis, CollapsedCloudsGiveTheBernsteinBasis) {
   }
 }
 
+// With collapsed clouds the basis sums to the indicator of the tetrahedron, so the line integrals
+// of all N_β sum to the chord length inside it. The splines jump on the faces (repeated knots):
+// eq. 16 then needs the line integrals of the flat knot subsets, the measures on planes.
+TEST(DmsTetrahedronBasis, LineIntegralsOfCollapsedCloudsSumToChordLengths) {
+  const std::array<Vector3d, 4> vertices = {Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY(),
+                                            Vector3d::UnitZ()};
+  std::mt19937 rng(59);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> u(0.0, 0.5);
+  for (int n = 1; n <= 3; ++n) {
+    Clouds clouds;
+    for (int c = 0; c < 4; ++c) clouds.knots[c].assign(n + 1, vertices[c]);
+    DmsTetrahedronBasis basis(n);
+    std::vector<double> out;
+    for (int trial = 0; trial < 10; ++trial) {
+      const Vector3d o(u(rng), u(rng), u(rng));
+      const Vector3d d(normal(rng), normal(rng), normal(rng));
+      // The chord: λ(o + t d) >= 0 for λ = (1 - x - y - z, x, y, z).
+      double lo = -kInfinity;
+      double hi = kInfinity;
+      const std::array<double, 4> l = {1 - o.sum(), o.x(), o.y(), o.z()};
+      const std::array<double, 4> m = {-d.sum(), d.x(), d.y(), d.z()};
+      for (int j = 0; j < 4; ++j) {
+        if (m[j] > 0) lo = std::max(lo, -l[j] / m[j]);
+        if (m[j] < 0) hi = std::min(hi, -l[j] / m[j]);
+      }
+      for (const auto& [a, b] : {std::pair{-kInfinity, kInfinity}, std::pair{-0.1, 0.2}}) {
+        basis.line_integrals(o, d, a, b, clouds.pointers(), out);
+        double sum = 0;
+        for (const double v : out) sum += v;
+        EXPECT_NEAR(sum, std::max(0.0, std::min(hi, b) - std::max(lo, a)), 1e-12) << "degree " << n;
+      }
+    }
+  }
+}
+
 TEST(DmsTetrahedronBasis, LineIntegralsEqualScaledSingleSplineIntegrals) {
   std::mt19937 rng(43);
   std::normal_distribution<double> normal(0.0, 1.0);
