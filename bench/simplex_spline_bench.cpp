@@ -71,6 +71,21 @@ const Setup& setup(int degree) {
   return *setups[degree];
 }
 
+// 16 tetrahedra: the setup's knot clouds with their sub-knots moved a little more.
+std::vector<std::array<std::vector<Vector3d>, 4>> cloud_variants(const Setup& s) {
+  std::vector<std::array<std::vector<Vector3d>, 4>> variants;
+  std::mt19937 rng(9);
+  std::normal_distribution<double> normal(0.0, 0.008);
+  for (int v = 0; v < 16; ++v) {
+    auto clouds = s.clouds;
+    for (auto& cloud : clouds) {
+      for (std::size_t i = 1; i < cloud.size(); ++i) cloud[i] += Vector3d(normal(rng), normal(rng), normal(rng));
+    }
+    variants.push_back(clouds);
+  }
+  return variants;
+}
+
 void BM_DmsEvaluateWithGradient(benchmark::State& state) {
   const Setup& s = setup(static_cast<int>(state.range(0)));
   DmsTetrahedronBasis basis(s.degree);
@@ -88,17 +103,8 @@ BENCHMARK(BM_DmsEvaluateWithGradient)->Arg(2)->Arg(3);
 // compiles its recurrence plan, as scattered points over a large domain do.
 void BM_DmsEvaluateWithGradientNewTetrahedronEachPoint(benchmark::State& state) {
   const int degree = static_cast<int>(state.range(0));
-  std::vector<std::array<std::vector<Vector3d>, 4>> variants;
-  std::mt19937 rng(9);
-  std::normal_distribution<double> normal(0.0, 0.08);
   const Setup& s = setup(degree);
-  for (int v = 0; v < 16; ++v) {
-    auto clouds = s.clouds;
-    for (auto& cloud : clouds) {
-      for (std::size_t i = 1; i < cloud.size(); ++i) cloud[i] += Vector3d(normal(rng), normal(rng), normal(rng)) * 0.1;
-    }
-    variants.push_back(clouds);
-  }
+  const auto variants = cloud_variants(s);
   DmsTetrahedronBasis basis(degree);
   DmsBasisValues out;
   std::size_t i = 0;
@@ -117,16 +123,9 @@ BENCHMARK(BM_DmsEvaluateWithGradientNewTetrahedronEachPoint)->Arg(2)->Arg(3);
 // spline volume keeps them): no recompilation.
 void BM_DmsEvaluateWithGradientFromPlans(benchmark::State& state) {
   const int degree = static_cast<int>(state.range(0));
-  std::vector<std::array<std::vector<Vector3d>, 4>> variants;
-  std::mt19937 rng(9);
-  std::normal_distribution<double> normal(0.0, 0.08);
   const Setup& s = setup(degree);
   std::vector<DmsTetrahedronPlan> plans;
-  for (int v = 0; v < 16; ++v) {
-    auto clouds = s.clouds;
-    for (auto& cloud : clouds) {
-      for (std::size_t i = 1; i < cloud.size(); ++i) cloud[i] += Vector3d(normal(rng), normal(rng), normal(rng)) * 0.1;
-    }
+  for (const auto& clouds : cloud_variants(s)) {
     plans.emplace_back(degree, std::array<const Vector3d*, 4>{clouds[0].data(), clouds[1].data(), clouds[2].data(),
                                                                clouds[3].data()});
   }

@@ -8,20 +8,6 @@
 namespace volspline::simplex_detail {
 namespace {
 
-// The parameter interval where every λ_j(origin + s·direction) >= 0 (the chord of the frame's
-// tetrahedron), intersected with [lo, hi]; empty when lo >= hi on return.
-void clip_to_chord(const std::array<double, 4>& l, const std::array<double, 4>& m, double& lo, double& hi) {
-  for (int j = 0; j < 4; ++j) {
-    if (m[j] == 0) {
-      if (l[j] < 0) hi = lo;
-    } else if (m[j] > 0) {
-      lo = std::max(lo, -l[j] / m[j]);
-    } else {
-      hi = std::min(hi, -l[j] / m[j]);
-    }
-  }
-}
-
 // W for a subset of a DMS tetrahedron's knots (cloud c holds knots c(n+1)..c(n+1)+n): the last
 // knot of each cloud, (p_i, q_j, r_k, s_l) for V_β — non-degenerate by the DMS conditions (§3.2)
 // and, with the sub-knots near their vertex, close to the largest |det| of the subset. A subset
@@ -166,25 +152,10 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
     for (int i = 0; i < count; ++i) out[i] = at_lower[i] == 0 ? 0.0 : (b - a) * at_lower[i];
     return;
   }
-  // Clip [a, b] to the knots' bounding box, padded so that clipped ends lie outside every support
-  // (their boundary terms vanish), and re-parametrise about the middle (LineRecurrence).
-  const double pad = 1e-6 * (hi_ - lo_).norm() + 1e-300;
+  // Clipped to the padded bounding box and re-parametrised about the middle (LineRecurrence).
   double t_lo = a;
   double t_hi = b;
-  for (int k = 0; k < 3; ++k) {
-    const double lo = lo_[k] - pad;
-    const double hi = hi_[k] + pad;
-    if (direction[k] == 0) {
-      if (origin[k] < lo || origin[k] > hi) return;
-      continue;
-    }
-    double t0 = (lo - origin[k]) / direction[k];
-    double t1 = (hi - origin[k]) / direction[k];
-    if (t0 > t1) std::swap(t0, t1);
-    t_lo = std::max(t_lo, t0);
-    t_hi = std::min(t_hi, t1);
-  }
-  if (!(t_lo < t_hi)) return;
+  if (!clip_to_padded_box(lo_, hi_, origin, direction, t_lo, t_hi)) return;
   const double middle = 0.5 * (t_lo + t_hi);
   const Eigen::Vector3d o = origin + middle * direction;
   const double lower = t_lo - middle;
@@ -197,15 +168,13 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
       values(end, at);
     }
   }
-  const double infinity = std::numeric_limits<double>::infinity();
   for (int i = 0; i < count; ++i) {
     const PlanNode& n = nodes_[i];
     if (n.flat) {
       out[i] = flat_line_integral(knots_.data(), n.mask, o, direction, lower, upper);
       continue;
     }
-    // Eq. 16 about the middle of the chord of W's tetrahedron (every λ_j >= 0 there), or about the
-    // point nearest W's centroid when the line misses it (LineRecurrence::compute).
+    // Eq. 16 about the middle of the chord of W's tetrahedron (recurrence_shift).
     const auto m = n.frame.mu(direction);
     const auto l0 = n.frame.lambda(o);
     if (n.degree == 0) {
@@ -215,17 +184,8 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
       out[i] = s_hi > s_lo ? (s_hi - s_lo) * n.inverse_volume : 0.0;
       continue;
     }
-    double lo = -infinity;
-    double hi = infinity;
-    clip_to_chord(l0, m, lo, hi);
-    double shift;
-    if (lo < hi) {
-      shift = 0.5 * (lo + hi);
-    } else {
-      const Eigen::Vector3d centroid = 0.25 * (knots_[n.w[0]] + knots_[n.w[1]] + knots_[n.w[2]] + knots_[n.w[3]]);
-      shift = (centroid - o).dot(direction) / direction.squaredNorm();
-    }
-    shift = std::clamp(shift, lower, upper);
+    const Eigen::Vector3d centroid = 0.25 * (knots_[n.w[0]] + knots_[n.w[1]] + knots_[n.w[2]] + knots_[n.w[3]]);
+    const double shift = recurrence_shift(l0, m, centroid, o, direction, lower, upper);
     std::array<double, 4> l;
     for (int j = 0; j < 4; ++j) l[j] = l0[j] + shift * m[j];
     double sum = 0;

@@ -187,6 +187,47 @@ void SubsetMemo::grow() {
   }
 }
 
+void clip_to_chord(const std::array<double, 4>& lambda, const std::array<double, 4>& mu, double& lo, double& hi) {
+  for (int j = 0; j < 4; ++j) {
+    if (mu[j] == 0) {
+      if (lambda[j] < 0) hi = lo;
+    } else if (mu[j] > 0) {
+      lo = std::max(lo, -lambda[j] / mu[j]);
+    } else {
+      hi = std::min(hi, -lambda[j] / mu[j]);
+    }
+  }
+}
+
+bool clip_to_padded_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& direction, double& t_lo, double& t_hi) {
+  const double pad = 1e-6 * (hi - lo).norm() + 1e-300;
+  for (int k = 0; k < 3; ++k) {
+    const double low = lo[k] - pad;
+    const double high = hi[k] + pad;
+    if (direction[k] == 0) {
+      if (origin[k] < low || origin[k] > high) return false;
+      continue;
+    }
+    double t0 = (low - origin[k]) / direction[k];
+    double t1 = (high - origin[k]) / direction[k];
+    if (t0 > t1) std::swap(t0, t1);
+    t_lo = std::max(t_lo, t0);
+    t_hi = std::min(t_hi, t1);
+  }
+  return t_lo < t_hi;
+}
+
+double recurrence_shift(const std::array<double, 4>& lambda, const std::array<double, 4>& mu,
+                        const Eigen::Vector3d& centroid, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& direction, double lower, double upper) {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  clip_to_chord(lambda, mu, lo, hi);
+  const double shift = lo < hi ? 0.5 * (lo + hi) : (centroid - origin).dot(direction) / direction.squaredNorm();
+  return std::clamp(shift, lower, upper);
+}
+
 double flat_line_integral(const Eigen::Vector3d* knots, KnotMask subset, const Eigen::Vector3d& origin,
                           const Eigen::Vector3d& direction, double lo, double hi) {
   std::array<int, kMaxRecurrenceKnots> idx{};
@@ -334,31 +375,15 @@ void LineRecurrence::set_line(const Eigen::Vector3d& origin, const Eigen::Vector
     empty_ = false;
     return;
   }
-  // Clip [a, b] to the knots' bounding box, padded so that the clipped ends lie outside every
-  // support when the interval covers it: their boundary terms are then exactly 0.
   Eigen::Vector3d lo = binding_->knot(0);
   Eigen::Vector3d hi = lo;
   for (int i = 1; i < binding_->count(); ++i) {
     lo = lo.cwiseMin(binding_->knot(i));
     hi = hi.cwiseMax(binding_->knot(i));
   }
-  const double pad = 1e-6 * (hi - lo).norm() + 1e-300;
-  lo.array() -= pad;
-  hi.array() += pad;
   double t_lo = a;
   double t_hi = b;
-  for (int k = 0; k < 3; ++k) {
-    if (direction[k] == 0) {
-      if (origin[k] < lo[k] || origin[k] > hi[k]) return;
-      continue;
-    }
-    double t0 = (lo[k] - origin[k]) / direction[k];
-    double t1 = (hi[k] - origin[k]) / direction[k];
-    if (t0 > t1) std::swap(t0, t1);
-    t_lo = std::max(t_lo, t0);
-    t_hi = std::min(t_hi, t1);
-  }
-  if (!(t_lo < t_hi)) return;
+  if (!clip_to_padded_box(lo, hi, origin, direction, t_lo, t_hi)) return;
   // Re-parametrise about the middle of the clipped interval: the barycentric coordinates of the
   // new origin stay of order 1 (eq. 16 multiplies them by the sub-integrals).
   const double middle = 0.5 * (t_lo + t_hi);
@@ -386,23 +411,6 @@ double LineRecurrence::integral(KnotMask subset) {
   return v;
 }
 
-namespace {
-
-// The parameter interval where every λ_j(origin + s·direction) >= 0 (the chord of the frame's
-// tetrahedron), intersected with [lo, hi]; empty when lo >= hi on return.
-void chord(const std::array<double, 4>& l, const std::array<double, 4>& m, double& lo, double& hi) {
-  for (int j = 0; j < 4; ++j) {
-    if (m[j] == 0) {
-      if (l[j] < 0) hi = lo;
-    } else if (m[j] > 0) {
-      lo = std::max(lo, -l[j] / m[j]);
-    } else {
-      hi = std::min(hi, -l[j] / m[j]);
-    }
-  }
-}
-
-}  // namespace
 
 double LineRecurrence::compute(KnotMask subset) {
   if (binding_->excludes(subset, coordinates_lo_, coordinates_hi_)) return 0;
@@ -419,29 +427,15 @@ double LineRecurrence::compute(KnotMask subset) {
   } else if (!binding_->choose(subset, nullptr, w, frame)) {
     return flat_line_integral(&binding_->knot(0), subset, origin_, direction_, lower_, upper_);
   }
-  // Eq. 16 holds about any point of the line; it is applied about the middle of the chord of W's
-  // tetrahedron (when the line meets it), where every λ_j >= 0 and the sum does not cancel, or
-  // else about the point nearest W's centroid. For degree 0 the chord is measured from there too.
   const auto m = frame.mu(direction_);
-  double shift = 0;
-  {
-    double lo = -std::numeric_limits<double>::infinity();
-    double hi = std::numeric_limits<double>::infinity();
-    chord(frame.lambda(origin_), m, lo, hi);
-    if (lo < hi) {
-      shift = 0.5 * (lo + hi);
-    } else {
-      const Eigen::Vector3d centroid =
-          0.25 * (binding_->knot(w[0]) + binding_->knot(w[1]) + binding_->knot(w[2]) + binding_->knot(w[3]));
-      shift = (centroid - origin_).dot(direction_) / direction_.squaredNorm();
-    }
-    shift = std::clamp(shift, lower_, upper_);
-  }
+  const Eigen::Vector3d centroid =
+      0.25 * (binding_->knot(w[0]) + binding_->knot(w[1]) + binding_->knot(w[2]) + binding_->knot(w[3]));
+  const double shift = recurrence_shift(frame.lambda(origin_), m, centroid, origin_, direction_, lower_, upper_);
   const auto l = frame.lambda(origin_ + shift * direction_);
   if (degree == 0) {
     double lo = lower_ - shift;
     double hi = upper_ - shift;
-    chord(l, m, lo, hi);
+    clip_to_chord(l, m, lo, hi);
     return hi > lo ? (hi - lo) / std::abs(frame.det) : 0.0;
   }
   double sum = 0;

@@ -75,6 +75,24 @@ inline bool half_open_contains(const std::array<double, 4>& lambda, const Eigen:
   return clearly_inside || in_half_open_tetrahedron(x, a, b, c, d);
 }
 
+/// The parameters s where every λ_j + s·μ_j >= 0 (the chord of a frame's tetrahedron along a line
+/// with λ = λ(origin), μ = μ(direction)), intersected with [lo, hi]; empty when lo >= hi on return.
+void clip_to_chord(const std::array<double, 4>& lambda, const std::array<double, 4>& mu, double& lo, double& hi);
+
+/// Intersects [t_lo, t_hi] with the parameters where origin + t·direction lies in the box
+/// [lo, hi] padded by 1e-6 of its diagonal: clipped ends then lie outside every support in the box,
+/// so their boundary terms in eq. 16 are exactly 0. False when the intersection is empty.
+bool clip_to_padded_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& direction, double& t_lo, double& t_hi);
+
+/// The parameter about which eq. 16 is applied for W (any point of the line will do): the middle
+/// of the chord of W's tetrahedron, where every λ_j >= 0 and the sum does not cancel, or the point
+/// nearest W's centroid when the line misses it; within [lower, upper]. `lambda` and `mu` are
+/// λ(origin) and μ(direction) in W's frame.
+double recurrence_shift(const std::array<double, 4>& lambda, const std::array<double, 4>& mu,
+                        const Eigen::Vector3d& centroid, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& direction, double lower, double upper);
+
 /// ∫_lo^hi of M(origin + s·direction | subset) ds for a flat subset (all knots on one plane Π):
 /// M is then a measure on Π, with area density M_2(y | subset)/(m + 1) (M_2 the bivariate simplex
 /// spline of the knots in orthonormal coordinates of Π, m = #knots - 4; both are images of the

@@ -34,9 +34,9 @@ class DmsRecurrenceState;
 
 /// The point-independent part of the recurrences of one tetrahedron's basis functions: the knot
 /// subsets the V_β reach, the four knots W of each and their barycentric frames (eqs. 1-2), in an
-/// order where subsets come before the sets that use them. About 12 KB for degree 2 and 44 KB for
-/// degree 3 (memory_bytes()). Build one per domain tetrahedron, and again after its knots move, to
-/// evaluate scattered points without recompiling: compiling costs several evaluations
+/// order where subsets come before the sets that use them. About 15 KiB for degree 2 and 49 KiB
+/// for degree 3 (memory_bytes()). Build one per domain tetrahedron, and again after its knots move,
+/// to evaluate scattered points without recompiling: compiling costs about seven evaluations
 /// (DmsTetrahedronBasis also keeps the last few it compiled from clouds).
 class DmsTetrahedronPlan {
  public:
@@ -65,9 +65,11 @@ class DmsTetrahedronPlan {
 /// All basis functions N_β^I of one domain tetrahedron I = (p, q, r, s), memoised: the V_β^I of
 /// eq. 4 share most of their subsets, so each distinct knot subset (a bitmask over the 4(n+1)
 /// knots) is evaluated once per point. Eq. 1 steps with the last knot of each cloud,
-/// (p_i, q_j, r_k, s_l) for V_β (non-degenerate by the DMS conditions), and with the four of
-/// largest |det| in subsets that miss a cloud. Reusable and allocation-free after the first call
-/// (the scratch lives in the object); one object per thread.
+/// (p_i, q_j, r_k, s_l) for V_β (non-degenerate by the DMS conditions), completed greedily in
+/// subsets that miss a cloud (docs/simplex-splines.md). The recurrence is compiled per knot
+/// configuration (DmsTetrahedronPlan); the object keeps the last 8 it compiled from clouds.
+/// Reusable and allocation-free after the first calls (the scratch lives in the object; a new
+/// configuration reuses a cached plan's storage); one object per thread.
 class DmsTetrahedronBasis {
  public:
   /// \throw InvalidInput for a degree outside 0..kMaxSimplexSplineDegree.
