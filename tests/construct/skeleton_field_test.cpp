@@ -204,6 +204,20 @@ TEST(SkeletonDistance, CubicAndRationalCurvesMatchSamplingAndMinimisation) {
       for (const double t : curve.knot_vector(0).breakpoints()) EXPECT_NEAR(field.distance(0, curve.evaluate({t})), 0.0, 1e-13);
       const double mid = 0.5 * (curve.domain_min(0) + curve.domain_max(0)) + 0.0123;
       EXPECT_NEAR(field.distance(0, curve.evaluate({mid})), 0.0, 1e-13);
+      // Off the curve by δ along a normal, c(t) stays nearest (δ is far below the radius of
+      // curvature); beyond an end along the tangent, the end is nearest.
+      std::uniform_real_distribution<double> parameter(curve.domain_min(0), curve.domain_max(0));
+      for (int i = 0; i < 10; ++i) {
+        const std::vector<double> d = curve.evaluate_derivatives({parameter(rng)}, 1);
+        const Eigen::Vector3d p(d[0], d[1], d[2]), tangent = Eigen::Vector3d(d[3], d[4], d[5]).normalized();
+        const Eigen::Vector3d normal = tangent.cross(random_point(rng, 1.0)).normalized();
+        for (const double delta : {1e-9, 1e-5}) EXPECT_NEAR(field.distance(0, p + delta * normal), delta, 1e-14) << i;
+      }
+      for (const auto& [t, outward] : {std::pair{curve.domain_min(0), -1.0}, std::pair{curve.domain_max(0), 1.0}}) {
+        const std::vector<double> d = curve.evaluate_derivatives({t}, 1);
+        const Eigen::Vector3d p(d[0], d[1], d[2]), tangent = Eigen::Vector3d(d[3], d[4], d[5]).normalized();
+        EXPECT_NEAR(field.distance(0, p + 1e-4 * outward * tangent), 1e-4, 1e-14);
+      }
     }
   }
 }
