@@ -54,6 +54,7 @@ struct SkeletonElement {
   std::string name;
 };
 
+/// The prepared distance to one curve (private: src/construct/curve_distance.h).
 class CurveDistance;
 
 /// The Euclidean distance from x to the element: to the point, the segment, the polyline, the
@@ -85,6 +86,7 @@ class SkeletonField {
   /// Eq. 8 at x.
   double operator()(const Eigen::Vector3d& x) const;
   /// d(x, s_i) of element i, as skeleton_distance but with the curve prepared once.
+  /// \throw InvalidInput if there is no element i.
   double distance(std::size_t element, const Eigen::Vector3d& x) const;
   const std::vector<SkeletonElement>& elements() const { return elements_; }
 
