@@ -536,10 +536,7 @@ Model parse_model(std::string_view text, const std::string& source_name) {
   try {
     return read_document(parse_json_document(text));
   } catch (const InvalidInput& e) {
-    std::string where = source_name;
-    if (!where.empty() && !e.where().empty()) where += ": ";
-    where += e.where();
-    throw InvalidInput(e.message(), where);
+    throw located_in_source(e, source_name);
   }
 }
 

@@ -183,6 +183,13 @@ std::string json_index_path(const std::string& parent, std::size_t index) {
   return parent + "[" + std::to_string(index) + "]";
 }
 
+InvalidInput located_in_source(const InvalidInput& error, const std::string& source_name) {
+  std::string where = source_name;
+  if (!where.empty() && !error.where().empty()) where += ": ";
+  where += error.where();
+  return InvalidInput(error.message(), where);
+}
+
 std::string describe_json_value(const json& value) {
   switch (value.type()) {
     case json::value_t::null:

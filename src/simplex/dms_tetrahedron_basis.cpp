@@ -1,67 +1,59 @@
 #include "volspline/simplex/dms_tetrahedron_basis.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "simplex_recurrence.h"
+#include "dms_recurrence_plan.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
 namespace simplex_detail {
 
-// The scratch of one DmsTetrahedronBasis: the knots of the current tetrahedron and the memos.
+// The scratch of one DmsTetrahedronBasis: compiled plans of the last few tetrahedra (a plan
+// depends only on the knots, so points of one tetrahedron in a row reuse it), node values.
 class DmsRecurrenceState {
  public:
-  explicit DmsRecurrenceState(int degree) : degree_(degree) {
-    const int expected = expected_dms_subsets(degree);
-    point_.attach(&binding_, expected);
-    line_.attach(&binding_, expected);
-  }
+  static constexpr int kCachedPlans = 8;
 
-  // Copies the clouds into the binding; false when x (or the segment) is outside their bounding
-  // box, where every basis function vanishes.
-  void bind(const std::array<const Eigen::Vector3d*, 4>& clouds) {
+  explicit DmsRecurrenceState(int degree) : degree_(degree), plans_(kCachedPlans) {}
+
+  const DmsRecurrencePlan& plan(const std::array<const Eigen::Vector3d*, 4>& clouds,
+                                const std::vector<std::array<int, 4>>& betas) {
     const int cloud_size = degree_ + 1;
-    for (int c = 0; c < 4; ++c) {
-      for (int i = 0; i < cloud_size; ++i) knots_[c * cloud_size + i] = clouds[c][i];
+    for (int c = 0; c < 4; ++c) std::copy(clouds[c], clouds[c] + cloud_size, knots_.begin() + c * cloud_size);
+    for (int k = 0; k < kCachedPlans; ++k) {
+      const int i = (last_ + kCachedPlans - k) % kCachedPlans;
+      if (plans_[i].matches(knots_.data())) {
+        last_ = i;
+        return plans_[i];
+      }
     }
-    lo_ = knots_[0];
-    hi_ = knots_[0];
-    for (int i = 1; i < 4 * cloud_size; ++i) {
-      lo_ = lo_.cwiseMin(knots_[i]);
-      hi_ = hi_.cwiseMax(knots_[i]);
+    last_ = (last_ + 1) % kCachedPlans;
+    DmsRecurrencePlan& fresh = plans_[last_];
+    fresh.build(knots_.data(), degree_, betas, index_);
+    return fresh;
+  }
+
+  // Room for the node values of `plan` (grows only for a plan larger than any before).
+  void fit(const DmsRecurrencePlan& plan) {
+    if (node_values_.size() < static_cast<std::size_t>(plan.size())) {
+      node_values_.resize(plan.size());
+      scratch_.resize(2 * static_cast<std::size_t>(plan.size()));
     }
-    const std::array<int, 4> vertices = {0, cloud_size, 2 * cloud_size, 3 * cloud_size};
-    binding_.bind(knots_.data(), 4 * cloud_size, BarycentricChoice::kDmsLastOfEachCloud, cloud_size, &vertices);
-  }
-  bool outside_box(const Eigen::Vector3d& x) const {
-    return (x.array() < lo_.array()).any() || (x.array() > hi_.array()).any();
   }
 
-  // The knots of V_β (eq. 4) and |d(p_i, q_j, r_k, s_l)| of eq. 5.
-  KnotMask subset(const std::array<int, 4>& beta) const {
-    const int cloud_size = degree_ + 1;
-    KnotMask mask = 0;
-    for (int c = 0; c < 4; ++c) mask |= ((KnotMask{1} << (beta[c] + 1)) - 1) << (c * cloud_size);
-    return mask;
-  }
-  double scale(const std::array<int, 4>& beta) const {
-    const int cloud_size = degree_ + 1;
-    return std::abs(oriented_det(knots_[beta[0]], knots_[cloud_size + beta[1]], knots_[2 * cloud_size + beta[2]],
-                                 knots_[3 * cloud_size + beta[3]]));
-  }
-
-  PointRecurrence& point() { return point_; }
-  LineRecurrence& line() { return line_; }
+  double* node_values() { return node_values_.data(); }
+  double* scratch() { return scratch_.data(); }
 
  private:
   int degree_;
+  std::vector<DmsRecurrencePlan> plans_;
+  int last_ = 0;
   std::array<Eigen::Vector3d, kMaxRecurrenceKnots> knots_{};
-  Eigen::Vector3d lo_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d hi_ = Eigen::Vector3d::Zero();
-  KnotBinding binding_;
-  PointRecurrence point_;
-  LineRecurrence line_;
+  std::vector<double> node_values_;
+  std::vector<double> scratch_;
+  SubsetMemo index_;
 };
 
 }  // namespace simplex_detail
@@ -107,23 +99,55 @@ DmsTetrahedronBasis& DmsTetrahedronBasis::operator=(DmsTetrahedronBasis&&) noexc
 void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const std::array<const Eigen::Vector3d*, 4>& clouds,
                                    int order, DmsBasisValues& out) {
   if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
+  evaluate_plan(x, state_->plan(clouds, multi_indices_), order, out);
+}
+
+void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const DmsTetrahedronPlan& plan, int order,
+                                   DmsBasisValues& out) {
+  if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
+  evaluate_plan(x, checked(plan), order, out);
+}
+
+const simplex_detail::DmsRecurrencePlan& DmsTetrahedronBasis::checked(const DmsTetrahedronPlan& plan) const {
+  if (plan.degree() != degree_ || !plan.plan_) {
+    throw InvalidInput("DMS plan of degree " + std::to_string(plan.degree()) + " for a basis of degree " +
+                       std::to_string(degree_));
+  }
+  return *plan.plan_;
+}
+
+void DmsTetrahedronBasis::evaluate_plan(const Eigen::Vector3d& x, const simplex_detail::DmsRecurrencePlan& plan,
+                                        int order, DmsBasisValues& out) {
   const std::size_t count = multi_indices_.size();
   out.values.assign(count, 0.0);
   out.gradients.assign(order >= 1 ? count : 0, Eigen::Vector3d::Zero());
   out.hessians.assign(order >= 2 ? count : 0, Eigen::Matrix3d::Zero());
-  auto& state = *state_;
-  state.bind(clouds);
-  if (state.outside_box(x)) return;
-  auto& point = state.point();
-  point.set_point(x);
+  if (plan.outside_box(x)) return;
+  state_->fit(plan);
+  double* m = state_->node_values();
+  plan.values(x, m);
+  const int n = degree_;
   for (std::size_t b = 0; b < count; ++b) {
-    const auto& beta = multi_indices_[b];
-    const SimplexSplineJet jet = point.jet(state.subset(beta), order);
-    if (jet.value == 0 && order == 0) continue;
-    const double scale = state.scale(beta);
-    out.values[b] = scale * jet.value;
-    if (order >= 1) out.gradients[b] = scale * jet.gradient;
-    if (order >= 2) out.hessians[b] = scale * jet.hessian;
+    const int top = plan.top(static_cast<int>(b));
+    const auto& node = plan.node(top);
+    const double scale = plan.scale(static_cast<int>(b));
+    out.values[b] = scale * m[top];
+    if (order == 0 || n == 0 || node.flat) continue;
+    // Eq. 2: ∇M(V) = n Σ_j ∇λ_j M(V \ w_j); for the Hessian eq. 2 again on each M(V \ w_j).
+    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+    for (int j = 0; j < 4; ++j) {
+      const int c = node.child[j];
+      gradient += node.frame.g[j] * m[c];
+      if (order == 2 && n >= 2 && !plan.node(c).flat) {
+        const auto& child = plan.node(c);
+        Eigen::Vector3d child_gradient = Eigen::Vector3d::Zero();
+        for (int k = 0; k < 4; ++k) child_gradient += child.frame.g[k] * m[child.child[k]];
+        hessian += node.frame.g[j] * child_gradient.transpose();
+      }
+    }
+    out.gradients[b] = (scale * n) * gradient;
+    if (order == 2) out.hessians[b] = (0.5 * scale * n * (n - 1)) * (hessian + hessian.transpose());
   }
 }
 
@@ -131,17 +155,57 @@ void DmsTetrahedronBasis::line_integrals(const Eigen::Vector3d& origin, const Ei
                                          double b, const std::array<const Eigen::Vector3d*, 4>& clouds,
                                          std::vector<double>& out) {
   if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
+  line_integrals_plan(origin, direction, a, b, state_->plan(clouds, multi_indices_), out);
+}
+
+void DmsTetrahedronBasis::line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a,
+                                         double b, const DmsTetrahedronPlan& plan, std::vector<double>& out) {
+  if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
+  line_integrals_plan(origin, direction, a, b, checked(plan), out);
+}
+
+void DmsTetrahedronBasis::line_integrals_plan(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                              double a, double b, const simplex_detail::DmsRecurrencePlan& plan,
+                                              std::vector<double>& out) {
   const std::size_t count = multi_indices_.size();
   out.assign(count, 0.0);
-  auto& state = *state_;
-  state.bind(clouds);
-  auto& line = state.line();
-  line.set_line(origin, direction, a, b);
+  state_->fit(plan);
+  double* integrals = state_->node_values();
+  plan.line_integrals(origin, direction, a, b, integrals, state_->scratch());
   for (std::size_t i = 0; i < count; ++i) {
-    const auto& beta = multi_indices_[i];
-    const double integral = line.integral(state.subset(beta));
-    if (integral != 0) out[i] = state.scale(beta) * integral;
+    const int top = plan.top(static_cast<int>(i));
+    if (integrals[top] != 0) out[i] = plan.scale(static_cast<int>(i)) * integrals[top];
   }
+}
+
+DmsTetrahedronPlan::DmsTetrahedronPlan() = default;
+DmsTetrahedronPlan::~DmsTetrahedronPlan() = default;
+DmsTetrahedronPlan::DmsTetrahedronPlan(DmsTetrahedronPlan&&) noexcept = default;
+DmsTetrahedronPlan& DmsTetrahedronPlan::operator=(DmsTetrahedronPlan&&) noexcept = default;
+
+DmsTetrahedronPlan::DmsTetrahedronPlan(int degree, const std::array<const Eigen::Vector3d*, 4>& clouds) {
+  if (degree < 0 || degree > kMaxSimplexSplineDegree) {
+    throw InvalidInput("DMS degree must be 0.." + std::to_string(kMaxSimplexSplineDegree) + ", got " +
+                       std::to_string(degree));
+  }
+  std::array<Eigen::Vector3d, simplex_detail::kMaxRecurrenceKnots> knots{};
+  for (int c = 0; c < 4; ++c) std::copy(clouds[c], clouds[c] + degree + 1, knots.begin() + c * (degree + 1));
+  plan_ = std::make_unique<simplex_detail::DmsRecurrencePlan>();
+  simplex_detail::SubsetMemo index;
+  plan_->build(knots.data(), degree, dms_multi_indices(degree), index);
+  plan_->shrink_to_fit();
+  degree_ = degree;
+}
+
+bool DmsTetrahedronPlan::matches(const std::array<const Eigen::Vector3d*, 4>& clouds) const {
+  if (!plan_) return false;
+  std::array<Eigen::Vector3d, simplex_detail::kMaxRecurrenceKnots> knots{};
+  for (int c = 0; c < 4; ++c) std::copy(clouds[c], clouds[c] + degree_ + 1, knots.begin() + c * (degree_ + 1));
+  return plan_->matches(knots.data());
+}
+
+std::size_t DmsTetrahedronPlan::memory_bytes() const {
+  return sizeof(*this) + (plan_ ? plan_->memory_bytes() : 0);
 }
 
 }  // namespace volspline

@@ -96,18 +96,5 @@ bool make_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
   return true;
 }
 
-bool half_open_contains(const std::array<double, 4>& lambda, const Eigen::Vector3d& x, const Eigen::Vector3d& a,
-                        const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
-  // The rounding error of a barycentric coordinate is a few units in the last place times the
-  // tetrahedron's aspect ratio; 1e-9 leaves room for aspect ratios up to about 1e6.
-  constexpr double kUndecided = 1e-9;
-  bool clearly_inside = true;
-  for (const double l : lambda) {
-    if (l < -kUndecided) return false;
-    if (l <= kUndecided) clearly_inside = false;
-  }
-  return clearly_inside || in_half_open_tetrahedron(x, a, b, c, d);
-}
-
 }  // namespace simplex_detail
 }  // namespace volspline

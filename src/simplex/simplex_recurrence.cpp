@@ -15,10 +15,9 @@ constexpr double kPruneMargin = 1e-9;
 
 }  // namespace
 
-bool KnotBinding::bind(const Eigen::Vector3d* knots, int count, BarycentricChoice choice, int cloud_size,
+bool KnotBinding::bind(const Eigen::Vector3d* knots, int count, BarycentricChoice choice,
                        const std::array<int, 4>* reference) {
   count_ = count;
-  cloud_size_ = cloud_size;
   choice_ = choice;
   std::copy(knots, knots + count, knots_.begin());
   bool found = false;
@@ -66,38 +65,57 @@ bool KnotBinding::choose_largest(KnotMask subset, const Eigen::Vector3d* x, std:
                                  BarycentricFrame& frame) const {
   std::array<int, kMaxRecurrenceKnots> index{};
   const int m = subset_indices(subset, index);
+  // Every four with its |det|; at most C(9, 4) = 126 when x matters (single splines).
+  struct Candidate {
+    double size;
+    std::array<int, 4> w;
+  };
+  constexpr int kMaxCandidates = 126;
+  std::array<Candidate, kMaxCandidates> candidates;
+  const bool rank_by_containment = x != nullptr && m <= 9;
+  int count = 0;
   double best = 0;
-  bool best_contains = false;
-  bool found = false;
   for (int i0 = 0; i0 < m; ++i0) {
     for (int i1 = i0 + 1; i1 < m; ++i1) {
       for (int i2 = i1 + 1; i2 < m; ++i2) {
         for (int i3 = i2 + 1; i3 < m; ++i3) {
-          const Eigen::Vector3d& a = knots_[index[i0]];
-          const Eigen::Vector3d& b = knots_[index[i1]];
-          const Eigen::Vector3d& c = knots_[index[i2]];
-          const Eigen::Vector3d& d = knots_[index[i3]];
-          const double size = std::abs(oriented_det(a, b, c, d));
+          const std::array<int, 4> q = {index[i0], index[i1], index[i2], index[i3]};
+          const double size = std::abs(oriented_det(knots_[q[0]], knots_[q[1]], knots_[q[2]], knots_[q[3]]));
           if (size == 0) continue;
-          bool contains = false;
-          if (x != nullptr) {
-            // Only a preference for stability: floating barycentrics suffice.
+          if (rank_by_containment) {
+            candidates[count++] = {size, q};
+          } else if (size > best) {
+            // The exact flatness check only for a four that would win.
             BarycentricFrame candidate;
-            if (!make_frame(a, b, c, d, candidate)) continue;
-            const auto l = candidate.lambda(*x);
-            contains = l[0] >= 0 && l[1] >= 0 && l[2] >= 0 && l[3] >= 0;
+            if (!make_frame(knots_[q[0]], knots_[q[1]], knots_[q[2]], knots_[q[3]], candidate)) continue;
+            best = size;
+            w = q;
+            frame = candidate;
           }
-          if (found && (contains < best_contains || (contains == best_contains && size <= best))) continue;
-          // The exact check only for a candidate that would win.
-          BarycentricFrame candidate;
-          if (!make_frame(a, b, c, d, candidate)) continue;
-          found = true;
-          best = size;
-          best_contains = contains;
-          w = {index[i0], index[i1], index[i2], index[i3]};
-          frame = candidate;
         }
       }
+    }
+  }
+  if (!rank_by_containment) return best > 0;
+  // By decreasing |det|, the first whose tetrahedron contains x (floating barycentrics suffice:
+  // this is only a preference for stability), else the largest.
+  std::sort(candidates.begin(), candidates.begin() + count,
+            [](const Candidate& a, const Candidate& b) { return a.size > b.size; });
+  bool found = false;
+  for (int c = 0; c < count; ++c) {
+    const auto& q = candidates[c].w;
+    BarycentricFrame candidate;
+    if (!make_frame(knots_[q[0]], knots_[q[1]], knots_[q[2]], knots_[q[3]], candidate)) continue;
+    if (!found) {
+      found = true;
+      w = q;
+      frame = candidate;
+    }
+    const auto l = candidate.lambda(*x);
+    if (l[0] >= 0 && l[1] >= 0 && l[2] >= 0 && l[3] >= 0) {
+      w = q;
+      frame = candidate;
+      return true;
     }
   }
   return found;
@@ -108,20 +126,6 @@ bool KnotBinding::choose(KnotMask subset, const Eigen::Vector3d* x, std::array<i
   if (custom_ != nullptr) {
     if (!(*custom_)(subset, w)) return false;
     return make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], frame);
-  }
-  if (choice_ == BarycentricChoice::kDmsLastOfEachCloud) {
-    const KnotMask cloud = bit(cloud_size_) - 1;
-    bool all_clouds = true;
-    for (int c = 0; c < 4 && all_clouds; ++c) {
-      const KnotMask members = (subset >> (c * cloud_size_)) & cloud;
-      if (members == 0) {
-        all_clouds = false;
-      } else {
-        w[c] = c * cloud_size_ + 31 - std::countl_zero(members);
-      }
-    }
-    if (all_clouds && make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], frame)) return true;
-    return choose_largest(subset, nullptr, w, frame);
   }
   return choose_largest(subset, choice_ == BarycentricChoice::kContainingThenLargest ? x : nullptr, w, frame);
 }
@@ -181,6 +185,85 @@ void SubsetMemo::grow() {
   for (const Entry& e : old) {
     if (e.stamp == stamp) store(e.mask, e.value);
   }
+}
+
+void clip_to_chord(const std::array<double, 4>& lambda, const std::array<double, 4>& mu, double& lo, double& hi) {
+  for (int j = 0; j < 4; ++j) {
+    if (mu[j] == 0) {
+      if (lambda[j] < 0) hi = lo;
+    } else if (mu[j] > 0) {
+      lo = std::max(lo, -lambda[j] / mu[j]);
+    } else {
+      hi = std::min(hi, -lambda[j] / mu[j]);
+    }
+  }
+}
+
+bool clip_to_padded_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& direction, double& t_lo, double& t_hi) {
+  const double pad = 1e-6 * (hi - lo).norm() + 1e-300;
+  for (int k = 0; k < 3; ++k) {
+    const double low = lo[k] - pad;
+    const double high = hi[k] + pad;
+    if (direction[k] == 0) {
+      if (origin[k] < low || origin[k] > high) return false;
+      continue;
+    }
+    double t0 = (low - origin[k]) / direction[k];
+    double t1 = (high - origin[k]) / direction[k];
+    if (t0 > t1) std::swap(t0, t1);
+    t_lo = std::max(t_lo, t0);
+    t_hi = std::min(t_hi, t1);
+  }
+  return t_lo < t_hi;
+}
+
+double recurrence_shift(const std::array<double, 4>& lambda, const std::array<double, 4>& mu,
+                        const Eigen::Vector3d& centroid, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& direction, double lower, double upper) {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  clip_to_chord(lambda, mu, lo, hi);
+  const double shift = lo < hi ? 0.5 * (lo + hi) : (centroid - origin).dot(direction) / direction.squaredNorm();
+  return std::clamp(shift, lower, upper);
+}
+
+double flat_line_integral(const Eigen::Vector3d* knots, KnotMask subset, const Eigen::Vector3d& origin,
+                          const Eigen::Vector3d& direction, double lo, double hi) {
+  std::array<int, kMaxRecurrenceKnots> idx{};
+  const int m = subset_indices(subset, idx);
+  if (m > kMaxSimplexSplineDegree + 5) return 0;
+  // The plane through the first knot and the two that span the largest triangle with it.
+  const Eigen::Vector3d& a = knots[idx[0]];
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d edge = Eigen::Vector3d::Zero();
+  for (int i = 1; i < m; ++i) {
+    for (int j = i + 1; j < m; ++j) {
+      const Eigen::Vector3d n = (knots[idx[i]] - a).cross(knots[idx[j]] - a);
+      if (n.squaredNorm() > normal.squaredNorm()) {
+        normal = n;
+        edge = knots[idx[i]] - a;
+      }
+    }
+  }
+  if (normal.squaredNorm() == 0) return 0;
+  const Eigen::Vector3d unit_normal = normal.normalized();
+  const double across = direction.dot(unit_normal);
+  if (across == 0) return 0;
+  const double s = (a - origin).dot(unit_normal) / across;
+  if (!(s >= lo && s < hi)) return 0;
+  const Eigen::Vector3d e1 = edge.normalized();
+  const Eigen::Vector3d e2 = unit_normal.cross(e1);
+  std::array<Eigen::Vector2d, kMaxSimplexSplineDegree + 5> planar;
+  for (int i = 0; i < m; ++i) {
+    const Eigen::Vector3d r = knots[idx[i]] - a;
+    planar[i] = Eigen::Vector2d(r.dot(e1), r.dot(e2));
+  }
+  const Eigen::Vector3d r = origin + s * direction - a;
+  const double density =
+      bivariate_simplex_spline_value(Eigen::Vector2d(r.dot(e1), r.dot(e2)),
+                                     std::span<const Eigen::Vector2d>(planar.data(), static_cast<std::size_t>(m)));
+  return density / ((m - 3) * std::abs(across));
 }
 
 int expected_dms_subsets(int degree) {
@@ -292,31 +375,15 @@ void LineRecurrence::set_line(const Eigen::Vector3d& origin, const Eigen::Vector
     empty_ = false;
     return;
   }
-  // Clip [a, b] to the knots' bounding box, padded so that the clipped ends lie outside every
-  // support when the interval covers it: their boundary terms are then exactly 0.
   Eigen::Vector3d lo = binding_->knot(0);
   Eigen::Vector3d hi = lo;
   for (int i = 1; i < binding_->count(); ++i) {
     lo = lo.cwiseMin(binding_->knot(i));
     hi = hi.cwiseMax(binding_->knot(i));
   }
-  const double pad = 1e-6 * (hi - lo).norm() + 1e-300;
-  lo.array() -= pad;
-  hi.array() += pad;
   double t_lo = a;
   double t_hi = b;
-  for (int k = 0; k < 3; ++k) {
-    if (direction[k] == 0) {
-      if (origin[k] < lo[k] || origin[k] > hi[k]) return;
-      continue;
-    }
-    double t0 = (lo[k] - origin[k]) / direction[k];
-    double t1 = (hi[k] - origin[k]) / direction[k];
-    if (t0 > t1) std::swap(t0, t1);
-    t_lo = std::max(t_lo, t0);
-    t_hi = std::min(t_hi, t1);
-  }
-  if (!(t_lo < t_hi)) return;
+  if (!clip_to_padded_box(lo, hi, origin, direction, t_lo, t_hi)) return;
   // Re-parametrise about the middle of the clipped interval: the barycentric coordinates of the
   // new origin stay of order 1 (eq. 16 multiplies them by the sub-integrals).
   const double middle = 0.5 * (t_lo + t_hi);
@@ -344,23 +411,6 @@ double LineRecurrence::integral(KnotMask subset) {
   return v;
 }
 
-namespace {
-
-// The parameter interval where every λ_j(origin + s·direction) >= 0 (the chord of the frame's
-// tetrahedron), intersected with [lo, hi]; empty when lo >= hi on return.
-void chord(const std::array<double, 4>& l, const std::array<double, 4>& m, double& lo, double& hi) {
-  for (int j = 0; j < 4; ++j) {
-    if (m[j] == 0) {
-      if (l[j] < 0) hi = lo;
-    } else if (m[j] > 0) {
-      lo = std::max(lo, -l[j] / m[j]);
-    } else {
-      hi = std::min(hi, -l[j] / m[j]);
-    }
-  }
-}
-
-}  // namespace
 
 double LineRecurrence::compute(KnotMask subset) {
   if (binding_->excludes(subset, coordinates_lo_, coordinates_hi_)) return 0;
@@ -372,34 +422,20 @@ double LineRecurrence::compute(KnotMask subset) {
     subset_indices(subset, idx);
     w = {idx[0], idx[1], idx[2], idx[3]};
     if (!make_frame(binding_->knot(w[0]), binding_->knot(w[1]), binding_->knot(w[2]), binding_->knot(w[3]), frame)) {
-      return 0;
+      return flat_line_integral(&binding_->knot(0), subset, origin_, direction_, lower_, upper_);
     }
   } else if (!binding_->choose(subset, nullptr, w, frame)) {
-    return 0;
+    return flat_line_integral(&binding_->knot(0), subset, origin_, direction_, lower_, upper_);
   }
-  // Eq. 16 holds about any point of the line; it is applied about the middle of the chord of W's
-  // tetrahedron (when the line meets it), where every λ_j >= 0 and the sum does not cancel, or
-  // else about the point nearest W's centroid. For degree 0 the chord is measured from there too.
   const auto m = frame.mu(direction_);
-  double shift = 0;
-  {
-    double lo = -std::numeric_limits<double>::infinity();
-    double hi = std::numeric_limits<double>::infinity();
-    chord(frame.lambda(origin_), m, lo, hi);
-    if (lo < hi) {
-      shift = 0.5 * (lo + hi);
-    } else {
-      const Eigen::Vector3d centroid =
-          0.25 * (binding_->knot(w[0]) + binding_->knot(w[1]) + binding_->knot(w[2]) + binding_->knot(w[3]));
-      shift = (centroid - origin_).dot(direction_) / direction_.squaredNorm();
-    }
-    shift = std::clamp(shift, lower_, upper_);
-  }
+  const Eigen::Vector3d centroid =
+      0.25 * (binding_->knot(w[0]) + binding_->knot(w[1]) + binding_->knot(w[2]) + binding_->knot(w[3]));
+  const double shift = recurrence_shift(frame.lambda(origin_), m, centroid, origin_, direction_, lower_, upper_);
   const auto l = frame.lambda(origin_ + shift * direction_);
   if (degree == 0) {
     double lo = lower_ - shift;
     double hi = upper_ - shift;
-    chord(l, m, lo, hi);
+    clip_to_chord(l, m, lo, hi);
     return hi > lo ? (hi - lo) / std::abs(frame.det) : 0.0;
   }
   double sum = 0;

@@ -58,11 +58,50 @@ bool exactly_collinear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const
 bool make_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                 const Eigen::Vector3d& d, BarycentricFrame& frame);
 
-/// The half-open rule for x with barycentric coordinates `lambda` in `frame` (of a, b, c, d):
+/// The half-open rule for x with barycentric coordinates `lambda` with respect to (a, b, c, d):
 /// decided by the signs of lambda where they are clearly away from 0, by the exact predicates
-/// (in_half_open_tetrahedron) otherwise.
-bool half_open_contains(const std::array<double, 4>& lambda, const Eigen::Vector3d& x, const Eigen::Vector3d& a,
-                        const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d);
+/// (in_half_open_tetrahedron) otherwise. The rounding error of a barycentric coordinate is a few
+/// units in the last place times the tetrahedron's aspect ratio; 1e-9 leaves room for aspect
+/// ratios up to about 1e6.
+inline bool half_open_contains(const std::array<double, 4>& lambda, const Eigen::Vector3d& x,
+                               const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                               const Eigen::Vector3d& d) {
+  constexpr double kUndecided = 1e-9;
+  bool clearly_inside = true;
+  for (const double l : lambda) {
+    if (l < -kUndecided) return false;
+    if (l <= kUndecided) clearly_inside = false;
+  }
+  return clearly_inside || in_half_open_tetrahedron(x, a, b, c, d);
+}
+
+/// The parameters s where every λ_j + s·μ_j >= 0 (the chord of a frame's tetrahedron along a line
+/// with λ = λ(origin), μ = μ(direction)), intersected with [lo, hi]; empty when lo >= hi on return.
+void clip_to_chord(const std::array<double, 4>& lambda, const std::array<double, 4>& mu, double& lo, double& hi);
+
+/// Intersects [t_lo, t_hi] with the parameters where origin + t·direction lies in the box
+/// [lo, hi] padded by 1e-6 of its diagonal: clipped ends then lie outside every support in the box,
+/// so their boundary terms in eq. 16 are exactly 0. False when the intersection is empty.
+bool clip_to_padded_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& direction, double& t_lo, double& t_hi);
+
+/// The parameter about which eq. 16 is applied for W (any point of the line will do): the middle
+/// of the chord of W's tetrahedron, where every λ_j >= 0 and the sum does not cancel, or the point
+/// nearest W's centroid when the line misses it; within [lower, upper]. `lambda` and `mu` are
+/// λ(origin) and μ(direction) in W's frame.
+double recurrence_shift(const std::array<double, 4>& lambda, const std::array<double, 4>& mu,
+                        const Eigen::Vector3d& centroid, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& direction, double lower, double upper);
+
+/// ∫_lo^hi of M(origin + s·direction | subset) ds for a flat subset (all knots on one plane Π):
+/// M is then a measure on Π, with area density M_2(y | subset)/(m + 1) (M_2 the bivariate simplex
+/// spline of the knots in orthonormal coordinates of Π, m = #knots - 4; both are images of the
+/// simplex measure, normalised as in simplex_spline.h), so the integral is that density at the
+/// crossing y of the line with Π divided by |direction · unit normal|. 0 for collinear knots, a line
+/// parallel to Π, or a crossing outside [lo, hi). Eq. 16 needs these: its integration by parts
+/// takes the derivative of M as a distribution, whose flat parts are where M jumps.
+double flat_line_integral(const Eigen::Vector3d* knots, KnotMask subset, const Eigen::Vector3d& origin,
+                          const Eigen::Vector3d& direction, double lo, double hi);
 
 /// How eq. 1 picks its four knots W in a subset.
 enum class BarycentricChoice {
@@ -72,10 +111,6 @@ enum class BarycentricChoice {
   /// The largest |det|: independent of the point, and every knot of the subset (so every point of
   /// its hull, the support) has |λ_j| <= 1.
   kLargest,
-  /// Knot clouds of a DMS tetrahedron (cloud c holds bits c(n+1)..c(n+1)+n): the last knot of each
-  /// cloud, (p_i, q_j, r_k, s_l) for V_β — non-degenerate by the DMS conditions (§3.2) and close
-  /// to the largest |det|; kLargest for subsets that miss a cloud.
-  kDmsLastOfEachCloud,
 };
 
 /// A test's own choice of W (returns false for "no independent four"); replaces the choice rule.
@@ -87,10 +122,10 @@ using CustomChoice = std::function<bool(KnotMask subset, std::array<int, 4>& w)>
 /// intersection of four slabs min..max of its knots' coordinates.
 class KnotBinding {
  public:
-  /// `cloud_size` is n + 1 for kDmsLastOfEachCloud (ignored otherwise). `reference` (four knot
+  /// `reference` (four knot
   /// indices) fixes the pruning frame; empty picks the largest |det| four. Returns false when
   /// every four knots are coplanar (then every subset is flat and every spline 0).
-  bool bind(const Eigen::Vector3d* knots, int count, BarycentricChoice choice, int cloud_size,
+  bool bind(const Eigen::Vector3d* knots, int count, BarycentricChoice choice,
             const std::array<int, 4>* reference = nullptr);
 
   const Eigen::Vector3d& knot(int i) const { return knots_[i]; }
@@ -113,7 +148,6 @@ class KnotBinding {
   std::array<Eigen::Vector3d, kMaxRecurrenceKnots> knots_{};
   std::array<std::array<double, 4>, kMaxRecurrenceKnots> coordinates_{};
   int count_ = 0;
-  int cloud_size_ = 0;
   BarycentricChoice choice_ = BarycentricChoice::kLargest;
   BarycentricFrame reference_;
   const CustomChoice* custom_ = nullptr;

@@ -128,6 +128,22 @@ double bivariate_value(const Eigen::Vector2d& y, const std::array<Eigen::Vector2
   return v;
 }
 
+// The memoised recurrences of one thread, reused so that their tables are allocated once.
+struct ThreadRecurrences {
+  KnotBinding binding;
+  simplex_detail::PointRecurrence point;
+  simplex_detail::LineRecurrence line;
+  ThreadRecurrences() {
+    point.attach(&binding, 1 << kMaxTrivariateKnots);
+    line.attach(&binding, 1 << kMaxTrivariateKnots);
+  }
+};
+
+ThreadRecurrences& thread_recurrences() {
+  thread_local ThreadRecurrences recurrences;
+  return recurrences;
+}
+
 }  // namespace
 
 double simplex_spline_value(const Eigen::Vector3d& x, std::span<const Eigen::Vector3d> knots) {
@@ -135,30 +151,26 @@ double simplex_spline_value(const Eigen::Vector3d& x, std::span<const Eigen::Vec
   std::array<Eigen::Vector3d, kMaxTrivariateKnots> copy{};
   std::copy(knots.begin(), knots.end(), copy.begin());
   KnotBinding binding;
-  binding.bind(copy.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest, 0);
+  binding.bind(copy.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest);
   return reference_value(x, copy, binding, all_knots(knots.size()));
 }
 
 SimplexSplineJet simplex_spline_jet(const Eigen::Vector3d& x, std::span<const Eigen::Vector3d> knots, int order) {
   check_knot_count(knots.size());
   if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
-  KnotBinding binding;
-  binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest, 0);
-  simplex_detail::PointRecurrence recurrence;
-  recurrence.attach(&binding, 1 << knots.size());
-  recurrence.set_point(x);
-  return recurrence.jet(all_knots(knots.size()), order);
+  auto& r = thread_recurrences();
+  r.binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest);
+  r.point.set_point(x);
+  return r.point.jet(all_knots(knots.size()), order);
 }
 
 double simplex_spline_directional_derivative(const Eigen::Vector3d& x, std::span<const Eigen::Vector3d> knots,
                                              const Eigen::Vector3d& v) {
   check_knot_count(knots.size());
-  KnotBinding binding;
-  binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest, 0);
-  simplex_detail::PointRecurrence recurrence;
-  recurrence.attach(&binding, 1 << knots.size());
-  recurrence.set_point(x);
-  return recurrence.directional_derivative(all_knots(knots.size()), v);
+  auto& r = thread_recurrences();
+  r.binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest);
+  r.point.set_point(x);
+  return r.point.directional_derivative(all_knots(knots.size()), v);
 }
 
 double bivariate_simplex_spline_value(const Eigen::Vector2d& y, std::span<const Eigen::Vector2d> knots) {
@@ -175,12 +187,10 @@ double simplex_spline_line_integral(const Eigen::Vector3d& origin, const Eigen::
                                     double b, std::span<const Eigen::Vector3d> knots) {
   check_knot_count(knots.size());
   if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
-  KnotBinding binding;
-  binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kLargest, 0);
-  simplex_detail::LineRecurrence recurrence;
-  recurrence.attach(&binding, 1 << knots.size());
-  recurrence.set_line(origin, direction, a, b);
-  return recurrence.integral(all_knots(knots.size()));
+  auto& r = thread_recurrences();
+  r.binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kLargest);
+  r.line.set_line(origin, direction, a, b);
+  return r.line.integral(all_knots(knots.size()));
 }
 
 double simplex_spline_full_line_integral_by_projection(const Eigen::Vector3d& x, const Eigen::Vector3d& d,

@@ -89,7 +89,7 @@ TEST(DmsTetrahedronBasis, MemoisedBasisEqualsScaledReferenceSplines) {
     const Clouds clouds = make_clouds(n, 0.12, rng);
     DmsTetrahedronBasis basis(n);
     DmsBasisValues out;
-    for (int trial = 0; trial < (n <= 3 ? 10 : 3); ++trial) {
+    for (int trial = 0; trial < (n <= 3 ? 6 : 1); ++trial) {
       const Vector3d x = random_point(rng);
       basis.evaluate(x, clouds.pointers(), 2, out);
       ASSERT_EQ(static_cast<int>(out.values.size()), basis.size());
@@ -137,6 +137,42 @@ TEST(DmsTetrahedronBasis, CollapsedCloudsGiveTheBernsteinBasis) {
           }
           EXPECT_NEAR(sum, inside ? 1.0 : 0.0, 1e-13) << x.transpose();
         }
+      }
+    }
+  }
+}
+
+// With collapsed clouds the basis sums to the indicator of the tetrahedron, so the line integrals
+// of all N_β sum to the chord length inside it. The splines jump on the faces (repeated knots):
+// eq. 16 then needs the line integrals of the flat knot subsets, the measures on planes.
+TEST(DmsTetrahedronBasis, LineIntegralsOfCollapsedCloudsSumToChordLengths) {
+  const std::array<Vector3d, 4> vertices = {Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY(),
+                                            Vector3d::UnitZ()};
+  std::mt19937 rng(59);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> u(0.0, 0.5);
+  for (int n = 1; n <= 3; ++n) {
+    Clouds clouds;
+    for (int c = 0; c < 4; ++c) clouds.knots[c].assign(n + 1, vertices[c]);
+    DmsTetrahedronBasis basis(n);
+    std::vector<double> out;
+    for (int trial = 0; trial < 10; ++trial) {
+      const Vector3d o(u(rng), u(rng), u(rng));
+      const Vector3d d(normal(rng), normal(rng), normal(rng));
+      // The chord: λ(o + t d) >= 0 for λ = (1 - x - y - z, x, y, z).
+      double lo = -kInfinity;
+      double hi = kInfinity;
+      const std::array<double, 4> l = {1 - o.sum(), o.x(), o.y(), o.z()};
+      const std::array<double, 4> m = {-d.sum(), d.x(), d.y(), d.z()};
+      for (int j = 0; j < 4; ++j) {
+        if (m[j] > 0) lo = std::max(lo, -l[j] / m[j]);
+        if (m[j] < 0) hi = std::min(hi, -l[j] / m[j]);
+      }
+      for (const auto& [a, b] : {std::pair{-kInfinity, kInfinity}, std::pair{-0.1, 0.2}}) {
+        basis.line_integrals(o, d, a, b, clouds.pointers(), out);
+        double sum = 0;
+        for (const double v : out) sum += v;
+        EXPECT_NEAR(sum, std::max(0.0, std::min(hi, b) - std::max(lo, a)), 1e-12) << "degree " << n;
       }
     }
   }
@@ -191,8 +227,44 @@ TEST(DmsTetrahedronBasis, ReusedObjectForgetsThePreviousTetrahedron) {
     EXPECT_EQ(a.gradients[i], Vector3d::Zero());
   }
   EXPECT_THROW(basis.evaluate(x, first.pointers(), 3, a), InvalidInput);
+  // More tetrahedra than the basis keeps compiled plans for, then the first again.
+  for (int k = 0; k < 12; ++k) {
+    const Clouds other = make_clouds(3, 0.1, rng);
+    basis.evaluate(x, other.pointers(), 1, b);
+  }
+  basis.evaluate(x, first.pointers(), 1, again);
+  basis.evaluate(Vector3d(0.2, 0.3, 0.25), first.pointers(), 1, a);
+  EXPECT_EQ(a.values, again.values);
   std::vector<double> integrals;
   EXPECT_THROW(basis.line_integrals(x, Vector3d::UnitX(), 1, 0, first.pointers(), integrals), InvalidInput);
+}
+
+TEST(DmsTetrahedronBasis, PlansCompiledBeforehandGiveTheSameBasis) {
+  std::mt19937 rng(53);
+  const Clouds clouds = make_clouds(2, 0.1, rng);
+  const DmsTetrahedronPlan plan(2, clouds.pointers());
+  EXPECT_TRUE(plan.matches(clouds.pointers()));
+  EXPECT_FALSE(plan.matches(make_clouds(2, 0.1, rng).pointers()));
+  EXPECT_GT(plan.memory_bytes(), 0u);
+  DmsTetrahedronBasis basis(2);
+  DmsBasisValues from_plan;
+  DmsBasisValues from_clouds;
+  std::vector<double> integrals_from_plan;
+  std::vector<double> integrals_from_clouds;
+  for (int trial = 0; trial < 5; ++trial) {
+    const Vector3d x = random_point(rng);
+    basis.evaluate(x, plan, 2, from_plan);
+    basis.evaluate(x, clouds.pointers(), 2, from_clouds);
+    EXPECT_EQ(from_plan.values, from_clouds.values);
+    EXPECT_EQ(from_plan.gradients, from_clouds.gradients);
+    basis.line_integrals(x, Vector3d(0.3, 1, -0.2), -1, 1, plan, integrals_from_plan);
+    basis.line_integrals(x, Vector3d(0.3, 1, -0.2), -1, 1, clouds.pointers(), integrals_from_clouds);
+    EXPECT_EQ(integrals_from_plan, integrals_from_clouds);
+  }
+  DmsTetrahedronBasis cubic(3);
+  EXPECT_THROW(cubic.evaluate(Vector3d::Zero(), plan, 0, from_plan), InvalidInput);
+  EXPECT_THROW(basis.evaluate(Vector3d::Zero(), DmsTetrahedronPlan(), 0, from_plan), InvalidInput);
+  EXPECT_THROW(DmsTetrahedronPlan(6, clouds.pointers()), InvalidInput);
 }
 
 }  // namespace

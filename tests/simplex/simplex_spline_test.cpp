@@ -46,16 +46,23 @@ Vector3d random_point_in_hull(std::mt19937& rng, const Knots& knots) {
   return x / total;
 }
 
-// Gauss–Legendre nodes and weights on [-1, 1] with 4 points (exact to degree 7).
-constexpr std::array<double, 4> kGaussNodes = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
-                                               0.8611363115940526};
-constexpr std::array<double, 4> kGaussWeights = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
-                                                 0.3478548451374538};
+// Gauss–Legendre rules on [-1, 1]: 3 points (exact to degree 5) and 4 points (degree 7).
+struct GaussRule {
+  std::array<double, 4> nodes;
+  std::array<double, 4> weights;
+  int size;
+};
+constexpr GaussRule kGauss3 = {{-0.7745966692414834, 0.0, 0.7745966692414834, 0.0},
+                               {0.5555555555555556, 0.8888888888888888, 0.5555555555555556, 0.0},
+                               3};
+constexpr GaussRule kGauss4 = {{-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526},
+                               {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538},
+                               4};
 
-// ∫ f over [lo, hi] with 4-point Gauss–Legendre on each piece between sorted breakpoints: exact
-// for piecewise polynomials of degree <= 7 with breaks only there.
+// ∫ f over [lo, hi] by `rule` on each piece between sorted breakpoints: exact for piecewise
+// polynomials of the rule's degree with breaks only there.
 template <class F>
-double piecewise_gauss(std::vector<double> breaks, double lo, double hi, F&& f) {
+double piecewise_gauss(std::vector<double> breaks, double lo, double hi, const GaussRule& rule, F&& f) {
   breaks.push_back(lo);
   breaks.push_back(hi);
   std::sort(breaks.begin(), breaks.end());
@@ -64,8 +71,8 @@ double piecewise_gauss(std::vector<double> breaks, double lo, double hi, F&& f) 
     const double a = std::max(lo, breaks[i]);
     const double b = std::min(hi, breaks[i + 1]);
     if (!(b > a)) continue;
-    for (int g = 0; g < 4; ++g) {
-      sum += 0.5 * (b - a) * kGaussWeights[g] * f(0.5 * (a + b) + 0.5 * (b - a) * kGaussNodes[g]);
+    for (int g = 0; g < rule.size; ++g) {
+      sum += 0.5 * (b - a) * rule.weights[g] * f(0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[g]);
     }
   }
   return sum;
@@ -105,38 +112,36 @@ double line_integral_by_quadrature(const Vector3d& o, const Vector3d& d, double 
     }
   }
   if (!(hi > lo)) return 0;
-  return piecewise_gauss(breaks, lo, hi, [&](double t) { return simplex_spline_jet(o + t * d, knots, 0).value; });
+  return piecewise_gauss(breaks, lo, hi, kGauss3, [&](double t) { return simplex_spline_jet(o + t * d, knots, 0).value; });
 }
 
 // ∫_{R^3} M exactly up to rounding: G(x) = ∫∫ M(x, y, z) dy dz is a univariate spline of degree
 // n + 2 with breaks at the knots' x (the projection of the simplex measure onto a line), so
-// 4-point Gauss per knot interval is exact for n <= 4 (sic: degree <= 7 needs n + 2 <= 7); for
-// fixed x, L(y) = ∫ M(x, y, z) dz is a polynomial of degree n + 1 between the crossings of the
-// vertical line with the lines through two projected knots; L itself comes from the line
-// integral recurrence along z (not the projection identity).
+// 4-point Gauss per knot interval is exact for n + 2 <= 7; for fixed x, L(y) = ∫ M(x, y, z) dz is
+// a polynomial of degree n + 1 <= 5 between the crossings of the vertical line with the lines
+// through two projected knots (3-point Gauss); L itself comes from the line-integral recurrence
+// along z (not the projection identity).
 double integral_over_space(const Knots& knots) {
   std::vector<double> xs;
-  double ylo = kInfinity;
-  double yhi = -kInfinity;
-  double xlo = kInfinity;
-  double xhi = -kInfinity;
-  for (const auto& k : knots) {
-    xs.push_back(k.x());
-    ylo = std::min(ylo, k.y());
-    yhi = std::max(yhi, k.y());
-    xlo = std::min(xlo, k.x());
-    xhi = std::max(xhi, k.x());
-  }
-  return piecewise_gauss(xs, xlo, xhi, [&](double x) {
+  for (const auto& k : knots) xs.push_back(k.x());
+  const auto [xlo, xhi] = std::minmax_element(xs.begin(), xs.end());
+  return piecewise_gauss(xs, *xlo, *xhi, kGauss4, [&](double x) {
+    // The knot net of the projected (bivariate) spline is the segments between two projected
+    // knots; their crossings with the vertical line are its breaks, and the extreme ones bound the
+    // projected hull.
     std::vector<double> ys;
     for (std::size_t i = 0; i < knots.size(); ++i) {
       for (std::size_t j = i + 1; j < knots.size(); ++j) {
         const Vector3d& p = knots[i];
         const Vector3d& q = knots[j];
-        if (p.x() != q.x()) ys.push_back(p.y() + (x - p.x()) * (q.y() - p.y()) / (q.x() - p.x()));
+        if (p.x() != q.x() && (x - p.x()) * (x - q.x()) <= 0) {
+          ys.push_back(p.y() + (x - p.x()) * (q.y() - p.y()) / (q.x() - p.x()));
+        }
       }
     }
-    return piecewise_gauss(ys, ylo, yhi, [&](double y) {
+    if (ys.empty()) return 0.0;
+    const auto [ylo, yhi] = std::minmax_element(ys.begin(), ys.end());
+    return piecewise_gauss(ys, *ylo, *yhi, kGauss3, [&](double y) {
       return simplex_spline_line_integral(Vector3d(x, y, 0), Vector3d::UnitZ(), -kInfinity, kInfinity, knots);
     });
   });
@@ -204,7 +209,7 @@ TEST(SimplexSpline, HalfOpenTrianglesOfATriangulationPartitionTheSquare) {
 // comparison is not one of lost digits).
 double value_with_choice(const Vector3d& x, const Knots& knots, bool first_independent, unsigned seed) {
   simplex_detail::KnotBinding binding;
-  binding.bind(knots.data(), static_cast<int>(knots.size()), simplex_detail::BarycentricChoice::kLargest, 0);
+  binding.bind(knots.data(), static_cast<int>(knots.size()), simplex_detail::BarycentricChoice::kLargest);
   const simplex_detail::CustomChoice choice = [&](simplex_detail::KnotMask subset, std::array<int, 4>& w) {
     std::array<int, simplex_detail::kMaxRecurrenceKnots> idx{};
     const int m = simplex_detail::subset_indices(subset, idx);
@@ -243,7 +248,7 @@ TEST(SimplexSpline, RecurrenceIsIndependentOfTheChosenKnotsAtRandomPoints) {
   std::mt19937 rng(5);
   for (int n = 1; n <= 5; ++n) {
     const Knots knots = random_knots(rng, n + 4);
-    for (int trial = 0; trial < 20; ++trial) {
+    for (int trial = 0; trial < 8; ++trial) {
       const Vector3d x = random_point_in_hull(rng, knots);
       const double reference = simplex_spline_value(x, knots);
       const double memoised = simplex_spline_jet(x, knots, 0).value;
@@ -308,6 +313,18 @@ TEST(SimplexSpline, RepeatedAndCoplanarKnotsGiveFiniteValues) {
     const Vector3d y = random_point_in_hull(rng, repeated);
     EXPECT_NEAR(simplex_spline_value(y, repeated), 1 - y.sum(), 1e-14);
   }
+  // These splines jump across the planes of their coplanar knots; the line integrals (eq. 16 with
+  // the integrals of the flat subsets) still match quadrature.
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (const Knots* k : {&knots, &repeated}) {
+    for (int trial = 0; trial < 5; ++trial) {
+      const Vector3d o = random_point_in_hull(rng, *k);
+      const Vector3d d(normal(rng), normal(rng), normal(rng));
+      for (const auto& [a, b] : {std::pair{-kInfinity, kInfinity}, std::pair{-0.1, 0.2}}) {
+        EXPECT_NEAR(simplex_spline_line_integral(o, d, a, b, *k), line_integral_by_quadrature(o, d, a, b, *k), 1e-12);
+      }
+    }
+  }
 }
 
 // Degree 1 in closed form (independent of eq. 1): M is the push-forward of the uniform measure on
@@ -353,7 +370,7 @@ TEST(SimplexSpline, GradientAndHessianMatchFiniteDifferences) {
   std::mt19937 rng(29);
   for (int n = 2; n <= 5; ++n) {
     const Knots knots = random_knots(rng, n + 4);
-    for (int trial = 0; trial < 5; ++trial) {
+    for (int trial = 0; trial < (n < 5 ? 3 : 1); ++trial) {
       const Vector3d x = random_point_in_hull(rng, knots);
       const auto jet = simplex_spline_jet(x, knots, 2);
       EXPECT_NEAR(jet.value, simplex_spline_value(x, knots), 1e-12 * std::max(1.0, jet.value));
@@ -413,7 +430,7 @@ TEST(SimplexSpline, LineIntegralsAgreeWithProjectionAndQuadrature) {
   std::normal_distribution<double> normal(0.0, 1.0);
   for (int n = 0; n <= 5; ++n) {
     const Knots knots = random_knots(rng, n + 4);
-    for (int trial = 0; trial < 3; ++trial) {
+    for (int trial = 0; trial < (n < 4 ? 3 : 1); ++trial) {
       const Vector3d x = random_point_in_hull(rng, knots);
       const Vector3d d = Vector3d(normal(rng), normal(rng), normal(rng)) * (trial + 0.5);
       const double full = simplex_spline_line_integral(x, d, -kInfinity, kInfinity, knots);
@@ -421,7 +438,7 @@ TEST(SimplexSpline, LineIntegralsAgreeWithProjectionAndQuadrature) {
       EXPECT_NEAR(full, simplex_spline_full_line_integral_by_projection(x, d, knots), 1e-10 * scale) << "degree " << n;
       EXPECT_NEAR(full, line_integral_by_quadrature(x, d, -kInfinity, kInfinity, knots), 1e-10 * scale);
       // Partial intervals: the boundary terms of the integration by parts.
-      for (const auto& [a, b] : {std::pair{-0.1, 0.2}, std::pair{0.0, 5.0}, std::pair{-3.0, 0.05}}) {
+      for (const auto& [a, b] : {std::pair{-0.1, 0.2}, std::pair{-3.0, 0.05}}) {
         EXPECT_NEAR(simplex_spline_line_integral(x, d, a, b, knots), line_integral_by_quadrature(x, d, a, b, knots),
                     1e-10 * scale)
             << "degree " << n << " [" << a << ", " << b << "]";

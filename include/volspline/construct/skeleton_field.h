@@ -54,6 +54,7 @@ struct SkeletonElement {
   std::string name;
 };
 
+/// The prepared distance to one curve (private: src/construct/curve_distance.h).
 class CurveDistance;
 
 /// The Euclidean distance from x to the element: to the point, the segment, the polyline, the
@@ -79,12 +80,14 @@ class SkeletonField {
   /// \throw InvalidInput located at "elements[i]..." (the keys of docs/skeleton-files.md:
   /// "elements[2].points[1]", "elements[0].falloff.coefficients") for a wrong number of points,
   /// a non-finite number, a missing curve or one not in R³, a semi-axis <= 0, a rotation that is
-  /// not orthonormal with det +1 (to 1e-9), a scale or radius <= 0, an empty coefficient list, a
-  /// polynomial falloff negative somewhere on [0, radius], or a non-finite weight.
+  /// not orthonormal with det +1 (to 1e-9), a scale or radius <= 0, an empty coefficient list or
+  /// one of more than kMaxFalloffDegree + 1, a polynomial falloff negative somewhere on
+  /// [0, radius], or a non-finite weight.
   explicit SkeletonField(std::vector<SkeletonElement> elements);
-  /// Eq. 8 at x.
+  /// Eq. 8 at x. Thread-safe, like distance().
   double operator()(const Eigen::Vector3d& x) const;
   /// d(x, s_i) of element i, as skeleton_distance but with the curve prepared once.
+  /// \throw InvalidInput if there is no element i.
   double distance(std::size_t element, const Eigen::Vector3d& x) const;
   const std::vector<SkeletonElement>& elements() const { return elements_; }
 

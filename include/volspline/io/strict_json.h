@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "volspline/core/error.h"
+
 namespace volspline {
 
 /// Deepest nesting of arrays and objects accepted. A model needs 5 levels (top, objects,
@@ -37,5 +39,10 @@ std::string json_key_path(const std::string& parent, const std::string& key);
 
 /// The path of element `index` of the array at `parent`: parent[index].
 std::string json_index_path(const std::string& parent, std::size_t index);
+
+/// `error` with `source_name` (usually a file name) in front of its location, as the readers of
+/// JSON formats report errors: "SOURCE: PATH: message", or "SOURCE: message" where it had no
+/// location.
+InvalidInput located_in_source(const InvalidInput& error, const std::string& source_name);
 
 }  // namespace volspline

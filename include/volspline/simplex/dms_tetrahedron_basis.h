@@ -28,15 +28,48 @@ struct DmsBasisValues {
 };
 
 namespace simplex_detail {
+class DmsRecurrencePlan;
 class DmsRecurrenceState;
-}
+}  // namespace simplex_detail
+
+/// The point-independent part of the recurrences of one tetrahedron's basis functions: the knot
+/// subsets the V_β reach, the four knots W of each and their barycentric frames (eqs. 1-2), in an
+/// order where subsets come before the sets that use them. About 15 KiB for degree 2 and 49 KiB
+/// for degree 3 (memory_bytes()). Build one per domain tetrahedron, and again after its knots move,
+/// to evaluate scattered points without recompiling: compiling costs about seven evaluations
+/// (DmsTetrahedronBasis also keeps the last few it compiled from clouds).
+class DmsTetrahedronPlan {
+ public:
+  DmsTetrahedronPlan();
+  /// clouds as for DmsTetrahedronBasis::evaluate. \throw InvalidInput for a degree outside
+  /// 0..kMaxSimplexSplineDegree.
+  DmsTetrahedronPlan(int degree, const std::array<const Eigen::Vector3d*, 4>& clouds);
+  ~DmsTetrahedronPlan();
+  DmsTetrahedronPlan(DmsTetrahedronPlan&&) noexcept;
+  DmsTetrahedronPlan& operator=(DmsTetrahedronPlan&&) noexcept;
+  DmsTetrahedronPlan(const DmsTetrahedronPlan&) = delete;
+  DmsTetrahedronPlan& operator=(const DmsTetrahedronPlan&) = delete;
+
+  /// -1 for a default-constructed (empty) plan.
+  int degree() const { return degree_; }
+  /// Whether the plan was compiled from exactly these knot coordinates.
+  bool matches(const std::array<const Eigen::Vector3d*, 4>& clouds) const;
+  std::size_t memory_bytes() const;
+
+ private:
+  friend class DmsTetrahedronBasis;
+  int degree_ = -1;
+  std::unique_ptr<simplex_detail::DmsRecurrencePlan> plan_;
+};
 
 /// All basis functions N_β^I of one domain tetrahedron I = (p, q, r, s), memoised: the V_β^I of
 /// eq. 4 share most of their subsets, so each distinct knot subset (a bitmask over the 4(n+1)
 /// knots) is evaluated once per point. Eq. 1 steps with the last knot of each cloud,
-/// (p_i, q_j, r_k, s_l) for V_β (non-degenerate by the DMS conditions), and with the four of
-/// largest |det| in subsets that miss a cloud. Reusable and allocation-free after the first call
-/// (the scratch lives in the object); one object per thread.
+/// (p_i, q_j, r_k, s_l) for V_β (non-degenerate by the DMS conditions), completed greedily in
+/// subsets that miss a cloud (docs/simplex-splines.md). The recurrence is compiled per knot
+/// configuration (DmsTetrahedronPlan); the object keeps the last 8 it compiled from clouds.
+/// Reusable and allocation-free after the first calls (the scratch lives in the object; a new
+/// configuration reuses a cached plan's storage); one object per thread.
 class DmsTetrahedronBasis {
  public:
   /// \throw InvalidInput for a degree outside 0..kMaxSimplexSplineDegree.
@@ -57,13 +90,26 @@ class DmsTetrahedronBasis {
   /// \throw InvalidInput for order outside 0..2.
   void evaluate(const Eigen::Vector3d& x, const std::array<const Eigen::Vector3d*, 4>& clouds, int order,
                 DmsBasisValues& out);
+  /// The same from a plan compiled beforehand. \throw InvalidInput for an empty plan, a plan of
+  /// another degree or order outside 0..2.
+  void evaluate(const Eigen::Vector3d& x, const DmsTetrahedronPlan& plan, int order, DmsBasisValues& out);
 
   /// ∫_a^b N_β^I(origin + t·direction) dt for every β (same order), memoised the same way
   /// (eq. 16 with boundary terms, simplex_spline_line_integral). \throw InvalidInput for a > b.
   void line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a, double b,
                       const std::array<const Eigen::Vector3d*, 4>& clouds, std::vector<double>& out);
+  /// The same from a plan compiled beforehand. \throw InvalidInput for a > b, an empty plan or a
+  /// plan of another degree.
+  void line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a, double b,
+                      const DmsTetrahedronPlan& plan, std::vector<double>& out);
 
  private:
+  const simplex_detail::DmsRecurrencePlan& checked(const DmsTetrahedronPlan& plan) const;
+  void evaluate_plan(const Eigen::Vector3d& x, const simplex_detail::DmsRecurrencePlan& plan, int order,
+                     DmsBasisValues& out);
+  void line_integrals_plan(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a, double b,
+                           const simplex_detail::DmsRecurrencePlan& plan, std::vector<double>& out);
+
   int degree_;
   std::vector<std::array<int, 4>> multi_indices_;
   std::unique_ptr<simplex_detail::DmsRecurrenceState> state_;

@@ -67,8 +67,9 @@ double bivariate_simplex_spline_value(const Eigen::Vector2d& y, std::span<const 
 /// b may be infinite). By eq. 16 with the boundary terms of the integration by parts that eq. 15
 /// drops (the paper integrates over the whole chord):
 ///   F_n = n/(n+1) Σ_j λ_j(origin | W) F_{n-1}(V \ x_kj) + 1/(n+1) [t M(origin + t·direction | V)]_a^b,
-/// degree 0 = (length of [a, b] ∩ the chord of the tetrahedron) / |det|. Memoised. Exact for knots
-/// whose splines of degree >= 1 are continuous along the line (no four coplanar knots on it).
+/// degree 0 = (length of [a, b] ∩ the chord of the tetrahedron) / |det|; flat knot subsets (where
+/// M jumps: repeated or coplanar knots) enter with the line integrals of their planar measures.
+/// Memoised.
 /// \throw InvalidInput for a bad knot count or a > b.
 double simplex_spline_line_integral(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a,
                                     double b, std::span<const Eigen::Vector3d> knots);
