@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 

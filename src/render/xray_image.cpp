@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Geometry>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 

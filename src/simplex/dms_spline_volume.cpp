@@ -22,7 +22,10 @@ DomainPointKey domain_point_key(const std::array<int, 4>& tetrahedron, const std
   int at = 0;
   for (int c = 0; c < 4; ++c)
     for (int m = 0; m < beta[static_cast<std::size_t>(c)]; ++m) key[static_cast<std::size_t>(at++)] = tetrahedron[static_cast<std::size_t>(c)];
-  std::sort(key.begin(), key.begin() + at);
+  // Insertion sort of the at <= 5 entries (std::sort here trips GCC 12's -Warray-bounds).
+  for (int i = 1; i < at; ++i)
+    for (int j = i; j > 0 && key[static_cast<std::size_t>(j - 1)] > key[static_cast<std::size_t>(j)]; --j)
+      std::swap(key[static_cast<std::size_t>(j - 1)], key[static_cast<std::size_t>(j)]);
   return key;
 }
 

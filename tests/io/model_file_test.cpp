@@ -52,6 +52,19 @@ void expect_identical(const SweptSolid& a, const SweptSolid& b) {
   EXPECT_TRUE(same_bits({a.frame_fit_error}, {b.frame_fit_error}));
 }
 
+void expect_identical(const DmsSplineVolume& a, const DmsSplineVolume& b) {
+  EXPECT_EQ(a.degree(), b.degree());
+  EXPECT_EQ(a.sharing(), b.sharing());
+  EXPECT_EQ(a.domain().tetrahedra, b.domain().tetrahedra);
+  EXPECT_EQ(a.attribute_names(), b.attribute_names());
+  ASSERT_EQ(a.knots().knots.size(), b.knots().knots.size());
+  for (std::size_t i = 0; i < a.knots().knots.size(); ++i)
+    EXPECT_TRUE(same_bits({a.knots().knots[i].x(), a.knots().knots[i].y(), a.knots().knots[i].z()},
+                          {b.knots().knots[i].x(), b.knots().knots[i].y(), b.knots().knots[i].z()}));
+  const Eigen::MatrixXd &ca = a.control_vectors(), &cb = b.control_vectors();
+  EXPECT_TRUE(same_bits(std::vector<double>(ca.data(), ca.data() + ca.size()), std::vector<double>(cb.data(), cb.data() + cb.size())));
+}
+
 void expect_identical(const Model& a, const Model& b) {
   ASSERT_EQ(a.objects.size(), b.objects.size());
   EXPECT_EQ(a.metadata, b.metadata);

@@ -85,6 +85,7 @@ TEST(DmsSplineVolume, BasisSumsToOneEverywhereOnTheClosedDomain) {
       bool negative = false;
       evaluator.for_each_basis_function(x, [&](int, double value) {
         sum += value;
+        if (value < -1e-14) std::printf("negative %.3e\n", value);
         negative = negative || value < -1e-14;
       });
       ASSERT_NEAR(sum, 1.0, 1e-12) << "degree " << degree << " at " << x.transpose();
