@@ -159,6 +159,61 @@ bool common_interior_is_nonempty(const CloudPoints& clouds, const std::array<int
   return solution.is_optimal() && CGAL::is_negative(solution.objective_value());
 }
 
+bool is_common_interior_point(const CloudPoints& clouds, const std::array<int, 4>& tet,
+                              const std::vector<HalfSpace>& spaces, const Point& x) {
+  for (const auto& h : spaces) {
+    if (half_space_sign(clouds, tet, h, x) <= 0) return false;
+  }
+  return true;
+}
+
+// A candidate interior point by the relaxation method for linear inequalities (Agmon;
+// Motzkin–Schoenberg 1954): from `start`, repeatedly reflect-with-overshoot the point across the
+// most violated half-space (in doubles, unit normals). For an intersection with interior it
+// reaches a point inside in few steps; the caller certifies it exactly. nullopt if no candidate
+// is found within the step budget.
+std::optional<Point> relaxation_witness(const CloudPoints& clouds, const std::array<int, 4>& tet,
+                                        const std::vector<HalfSpace>& spaces, const Point& start) {
+  struct Plane {
+    Eigen::Vector3d normal;  // unit, pointing into the half-space
+    Eigen::Vector3d origin;
+  };
+  std::vector<Plane> planes;
+  planes.reserve(spaces.size());
+  const auto vec = [](const Point& p) { return Eigen::Vector3d(p.x(), p.y(), p.z()); };
+  for (const auto& h : spaces) {
+    std::array<Eigen::Vector3d, 3> fixed;
+    int f = 0;
+    for (int c = 0; c < 4; ++c) {
+      if (c != h.corner) fixed[f++] = vec(clouds.knot(tet[c], h.indices[c]));
+    }
+    // orientation with x in slot m = (-1)^(3-m) ((B-A) x (C-A)) . (x - A), (A, B, C) the other
+    // three slots in order: moving x to the last slot takes 3 - m transpositions.
+    Eigen::Vector3d normal = (fixed[1] - fixed[0]).cross(fixed[2] - fixed[0]);
+    if ((3 - h.corner) % 2 == 1) normal = -normal;
+    const double length = normal.norm();
+    if (!(length > 0) || !std::isfinite(length)) return std::nullopt;
+    planes.push_back({normal / length, fixed[0]});
+  }
+  Eigen::Vector3d x = vec(start);
+  constexpr int kSteps = 200;
+  constexpr double kOvershoot = 1.9;  // in (0, 2): Agmon's relaxation parameter
+  for (int step = 0; step < kSteps; ++step) {
+    double worst = std::numeric_limits<double>::infinity();
+    const Plane* violated = nullptr;
+    for (const Plane& plane : planes) {
+      const double value = plane.normal.dot(x - plane.origin);
+      if (value < worst) {
+        worst = value;
+        violated = &plane;
+      }
+    }
+    if (worst > 0) return Point(x.x(), x.y(), x.z());
+    x -= kOvershoot * worst * violated->normal;
+  }
+  return std::nullopt;
+}
+
 TetrahedronCheck check_tetrahedron(const CloudPoints& clouds, const std::array<int, 4>& tet,
                                    const std::vector<std::array<int, 4>>& subs, const std::vector<HalfSpace>& spaces,
                                    bool decide_exactly) {
@@ -167,19 +222,19 @@ TetrahedronCheck check_tetrahedron(const CloudPoints& clouds, const std::array<i
                                         clouds.knot(tet[2], sub[2]), clouds.knot(tet[3], sub[3]));
     if (sign <= 0) return {sign == 0 ? Violation::kDegenerate : Violation::kInverted, sub};
   }
-  // Certificate: I's centroid strictly inside every sub-tetrahedron (an exact test of the
-  // rounded centroid, which is as good a witness as the exact one).
+  // Certificates: a point strictly inside every half-space, tested exactly (a rounded point is
+  // as good a witness as an exact one). First I's centroid; where that fails, a point found by
+  // the relaxation method; only where both fail, the exact linear programme.
   const Point centroid = CGAL::centroid(clouds.knot(tet[0], 0), clouds.knot(tet[1], 0), clouds.knot(tet[2], 0),
                                         clouds.knot(tet[3], 0));
-  bool certified = true;
-  for (const auto& h : spaces) {
-    if (half_space_sign(clouds, tet, h, centroid) <= 0) {
-      certified = false;
-      break;
+  if (is_common_interior_point(clouds, tet, spaces, centroid)) return {};
+  if (decide_exactly) {
+    if (const auto witness = relaxation_witness(clouds, tet, spaces, centroid);
+        witness && is_common_interior_point(clouds, tet, spaces, *witness)) {
+      return {};
     }
+    if (common_interior_is_nonempty(clouds, tet, spaces)) return {};
   }
-  if (certified) return {};
-  if (decide_exactly && common_interior_is_nonempty(clouds, tet, spaces)) return {};
   return {Violation::kEmptyIntersection, {}};
 }
 

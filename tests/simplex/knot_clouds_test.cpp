@@ -147,6 +147,73 @@ TEST(KnotClouds, EmptyCommonInteriorIsDecidedExactlyAndNamed) {
   EXPECT_EQ(inside.where(), "tetrahedra[0]");
   EXPECT_NE(inside.message().find("inside Ω"), std::string::npos) << inside.what();
   EXPECT_NE(inside.message().find("t_1 = (0.25, 0.25, 0.001)"), std::string::npos) << inside.what();
+  // A wedge a millionth of a radian wide: still a common interior.
+  clouds.knots[1] = Eigen::Vector3d(0.25, 0.25, 1e-7);
+  const InvalidInput thin = expect_invalid([&] { validate_knot_clouds(domain, clouds); });
+  EXPECT_NE(thin.message().find("inside Ω"), std::string::npos) << thin.what();
+}
+
+// Sub-tetrahedra of degree n as (i, j, k, l), i+j+k+l <= n.
+std::vector<std::array<int, 4>> knot_tetrahedra(int n) {
+  std::vector<std::array<int, 4>> result;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; i + j <= n; ++j)
+      for (int k = 0; i + j + k <= n; ++k)
+        for (int l = 0; i + j + k + l <= n; ++l) result.push_back({i, j, k, l});
+  return result;
+}
+
+TEST(KnotClouds, EquationThreeVerdictsAgreeWithSampling) {
+  // Random clouds on one tetrahedron: wherever random points of I find one strictly inside all
+  // knot tetrahedra (by barycentric coordinates in doubles, with a margin), validation must not
+  // report eq. 3; and both verdicts must occur, so the comparison is not vacuous.
+  const TetrahedralMesh domain = right_angled_tetrahedron();
+  const int n = 2;
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
+  int empty = 0, nonempty = 0, confirmed = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    KnotClouds clouds{n, {}};
+    for (int v = 0; v < 4; ++v) {
+      clouds.knots.push_back(domain.points[v]);
+      for (int l = 1; l <= n; ++l) clouds.knots.push_back(domain.points[v] + 0.45 * Eigen::Vector3d(u(random), u(random), u(random)));
+    }
+    std::string verdict = "valid";
+    try {
+      validate_knot_clouds(domain, clouds);
+    } catch (const InvalidInput& e) {
+      verdict = e.message();
+    }
+    if (verdict.find("degenerate") != std::string::npos || verdict.find("opposite") != std::string::npos) continue;
+    const bool reported_empty = verdict.find("eq. 3") != std::string::npos;
+    (reported_empty ? empty : nonempty) += 1;
+    bool sampled_inside = false;
+    for (int s = 0; s < 400 && !sampled_inside; ++s) {
+      double w[4], sum = 0;
+      for (double& x : w) sum += (x = -std::log(1 - unit(random)));
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int c = 0; c < 4; ++c) x += w[c] / sum * domain.points[c];
+      bool inside_all = true;
+      for (const auto& sub : knot_tetrahedra(n)) {
+        Eigen::Matrix3d m;
+        const Eigen::Vector3d a = clouds.cloud(0)[sub[0]];
+        for (int c = 1; c < 4; ++c) m.col(c - 1) = clouds.cloud(c)[sub[c]] - a;
+        const Eigen::Vector3d b = m.inverse() * (x - a);
+        if (!((b.array() > 1e-9).all() && b.sum() < 1 - 1e-9)) {
+          inside_all = false;
+          break;
+        }
+      }
+      sampled_inside = inside_all;
+    }
+    if (sampled_inside) {
+      EXPECT_FALSE(reported_empty) << "trial " << trial << ": " << verdict;
+      ++confirmed;
+    }
+  }
+  EXPECT_GT(empty, 5);
+  EXPECT_GT(nonempty, 5);
+  EXPECT_GT(confirmed, 5);
 }
 
 TEST(KnotClouds, MalformedCloudsAreRejected) {

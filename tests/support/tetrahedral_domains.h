@@ -67,9 +67,12 @@ inline TriangleMesh boundary_surface(const TetrahedralMesh& mesh) {
   return surface;
 }
 
-/// ../shared/data/volumes/ seen from the source tree, where tests find real data.
+#ifdef VOLSPLINE_SOURCE_DIR
+/// ../shared/data/volumes/ seen from the source tree, where tests find real data (tests only:
+/// benchmarks have no source directory compiled in).
 inline std::filesystem::path shared_volume_data() {
   return std::filesystem::path(VOLSPLINE_SOURCE_DIR).parent_path() / "shared" / "data" / "volumes";
 }
+#endif
 
 }  // namespace volspline::test_support
