@@ -140,6 +140,13 @@ class TokenReader {
     }
     return value;
   }
+  // Before entry i of `declared`: the file must not end here.
+  void expect_entry(long long i, long long declared, const std::string& what) const {
+    if (done()) {
+      fail("the header declares " + std::to_string(declared) + " " + what + ", the file ends after " + std::to_string(i) +
+           " (truncated?)");
+    }
+  }
   // A count no larger than the tokens left can back (each entry has at least `per_entry`).
   std::size_t count(const std::string& what, std::size_t per_entry) {
     const std::size_t at = line();
@@ -284,10 +291,7 @@ TetrahedralMesh read_tetgen(const std::filesystem::path& path) {
   const std::size_t per_point = 4 + static_cast<std::size_t>(attributes + markers);
   long long base = 0;
   for (long long i = 0; i < declared; ++i) {
-    if (nodes.done()) {
-      nodes.fail("the header declares " + std::to_string(declared) + " points, the file ends after " + std::to_string(i) +
-                 " (truncated?)");
-    }
+    nodes.expect_entry(i, declared, "points");
     const std::size_t at = nodes.line();
     const long long number = nodes.integer("the number of point " + std::to_string(i));
     if (i == 0) {
@@ -316,10 +320,7 @@ TetrahedralMesh read_tetgen(const std::filesystem::path& path) {
   }
   if (tetrahedra < 0 || regions < 0) elements.fail("negative count in the header", ele_header);
   for (long long i = 0; i < tetrahedra; ++i) {
-    if (elements.done()) {
-      elements.fail("the header declares " + std::to_string(tetrahedra) + " tetrahedra, the file ends after " +
-                    std::to_string(i) + " (truncated?)");
-    }
+    elements.expect_entry(i, tetrahedra, "tetrahedra");
     const std::size_t at = elements.line();
     elements.integer("the number of tetrahedron " + std::to_string(i));
     origins.tetrahedron_place.push_back(at);

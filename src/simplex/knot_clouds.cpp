@@ -31,16 +31,6 @@ std::string point_text(const Eigen::Vector3d& p) {
   return "(" + format_double(p.x()) + ", " + format_double(p.y()) + ", " + format_double(p.z()) + ")";
 }
 
-// The sub-tetrahedra [p_i, q_j, r_k, s_l], i+j+k+l <= n, as index quadruples.
-std::vector<std::array<int, 4>> sub_tetrahedra(int n) {
-  std::vector<std::array<int, 4>> result;
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; i + j <= n; ++j)
-      for (int k = 0; i + j + k <= n; ++k)
-        for (int l = 0; i + j + k + l <= n; ++l) result.push_back({i, j, k, l});
-  return result;
-}
-
 // The distinct face planes of those sub-tetrahedra: the face opposite corner m with knot
 // indices (the other three corners') summing to at most n. Every sub-tetrahedron having that
 // face puts a knot of corner m on the same side of it once all are positively oriented, so the
@@ -53,7 +43,7 @@ struct HalfSpace {
 std::vector<HalfSpace> half_spaces(int n) {
   std::vector<HalfSpace> result;
   for (int m = 0; m < 4; ++m) {
-    for (const auto& sub : sub_tetrahedra(n)) {
+    for (const auto& sub : knot_tetrahedron_indices(n)) {
       if (sub[m] != 0) continue;
       result.push_back({m, sub});
     }
@@ -361,6 +351,16 @@ std::vector<Eigen::Vector3d> pseudo_normals(const TetrahedralMesh& domain, const
 
 }  // namespace
 
+std::vector<std::array<int, 4>> knot_tetrahedron_indices(int degree) {
+  if (degree < 0) throw InvalidInput("degree " + std::to_string(degree) + " is negative", "degree");
+  std::vector<std::array<int, 4>> result;
+  for (int i = 0; i <= degree; ++i)
+    for (int j = 0; i + j <= degree; ++j)
+      for (int k = 0; i + j + k <= degree; ++k)
+        for (int l = 0; i + j + k + l <= degree; ++l) result.push_back({i, j, k, l});
+  return result;
+}
+
 KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const KnotCloudOptions& options) {
   check_degree(degree);
   if (!(options.spread > 0 && options.spread < 0.5)) {
@@ -434,7 +434,7 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
   for (std::size_t v = 0; v < num_points; ++v) place(static_cast<int>(v));
 
   const TetrahedronLocator locator(domain);
-  const auto subs = sub_tetrahedra(n);
+  const auto subs = knot_tetrahedron_indices(n);
   const auto spaces = half_spaces(n);
   std::vector<int> dirty_tetrahedra(domain.tetrahedra.size());
   for (std::size_t t = 0; t < dirty_tetrahedra.size(); ++t) dirty_tetrahedra[t] = static_cast<int>(t);
@@ -505,7 +505,7 @@ void validate_knot_clouds(const TetrahedralMesh& domain, const KnotClouds& cloud
     }
   }
   const CloudPoints points = cloud_points(clouds);
-  const auto subs = sub_tetrahedra(n);
+  const auto subs = knot_tetrahedron_indices(n);
   const auto spaces = half_spaces(n);
   for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t) {
     const TetrahedronCheck check = check_tetrahedron(points, domain.tetrahedra[t], subs, spaces, true);

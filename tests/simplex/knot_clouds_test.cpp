@@ -153,14 +153,18 @@ TEST(KnotClouds, EmptyCommonInteriorIsDecidedExactlyAndNamed) {
   EXPECT_NE(thin.message().find("inside Ω"), std::string::npos) << thin.what();
 }
 
-// Sub-tetrahedra of degree n as (i, j, k, l), i+j+k+l <= n.
-std::vector<std::array<int, 4>> knot_tetrahedra(int n) {
-  std::vector<std::array<int, 4>> result;
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; i + j <= n; ++j)
-      for (int k = 0; i + j + k <= n; ++k)
-        for (int l = 0; i + j + k + l <= n; ++l) result.push_back({i, j, k, l});
-  return result;
+TEST(KnotClouds, KnotTetrahedronIndicesAreTheMultiIndicesUpToTheDegree) {
+  for (int n = 0; n <= kMaxKnotCloudDegree; ++n) {
+    const auto indices = knot_tetrahedron_indices(n);
+    // C(n + 4, 4) quadruples of non-negative integers with sum <= n, all distinct.
+    EXPECT_EQ(indices.size(), static_cast<std::size_t>((n + 1) * (n + 2) * (n + 3) * (n + 4) / 24));
+    for (const auto& b : indices) {
+      EXPECT_TRUE(std::all_of(b.begin(), b.end(), [](int x) { return x >= 0; }));
+      EXPECT_LE(b[0] + b[1] + b[2] + b[3], n);
+    }
+    EXPECT_TRUE(std::is_sorted(indices.begin(), indices.end()));
+    EXPECT_EQ(std::adjacent_find(indices.begin(), indices.end()), indices.end());
+  }
 }
 
 TEST(KnotClouds, EquationThreeVerdictsAgreeWithSampling) {
@@ -194,7 +198,7 @@ TEST(KnotClouds, EquationThreeVerdictsAgreeWithSampling) {
       Eigen::Vector3d x = Eigen::Vector3d::Zero();
       for (int c = 0; c < 4; ++c) x += w[c] / sum * domain.points[c];
       bool inside_all = true;
-      for (const auto& sub : knot_tetrahedra(n)) {
+      for (const auto& sub : knot_tetrahedron_indices(n)) {
         Eigen::Matrix3d m;
         const Eigen::Vector3d a = clouds.cloud(0)[sub[0]];
         for (int c = 1; c < 4; ++c) m.col(c - 1) = clouds.cloud(c)[sub[c]] - a;

@@ -2,6 +2,7 @@
 // Knot clouds of a trivariate DMS spline (Hua–He–Qin §3.2): one cloud [t_0 = t, t_1..t_n] per
 // vertex t of the domain Ω, subject to the validity conditions around eq. 3–4. Generation and
 // its decisions, and what cannot be made valid: docs/tetrahedral-domains.md.
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -26,6 +27,11 @@ struct KnotCloudOptions {
 
 /// The degrees the clouds support: 0..kMaxKnotCloudDegree.
 inline constexpr int kMaxKnotCloudDegree = 5;
+
+/// The index quadruples (i, j, k, l), i+j+k+l <= degree, of the knot tetrahedra
+/// [p_i, q_j, r_k, s_l] of a domain tetrahedron (p, q, r, s) that §3.2 requires non-degenerate:
+/// C(degree + 4, 4) of them, lexicographically ordered. \throw InvalidInput for a negative degree.
+std::vector<std::array<int, 4>> knot_tetrahedron_indices(int degree);
 
 /// Generates valid clouds: t_0 is the vertex; interior vertices get sub-knots near it in fixed, deterministic, well-spread directions;
 /// vertices on ∂Ω get their sub-knots outside Ω (along an outward pseudo-normal, so that every boundary face's knots lie outside Ω as §3.2
