@@ -268,6 +268,14 @@ TetrahedralMesh read_medit(const std::filesystem::path& path) {
   return checked(std::move(mesh), origins);
 }
 
+// The integers of a TetGen header, each named for its error.
+template <std::size_t N>
+std::array<long long, N> header_integers(TokenReader& in, const std::array<const char*, N>& names) {
+  std::array<long long, N> values;
+  for (std::size_t k = 0; k < N; ++k) values[k] = in.integer(names[k]);
+  return values;
+}
+
 // TetGen .node + .ele: a header line, then one numbered entry per line; numbering starts at
 // 0 or 1 (the first point's number decides) and the .ele refers to the .node's numbers.
 TetrahedralMesh read_tetgen(const std::filesystem::path& path) {
@@ -281,10 +289,8 @@ TetrahedralMesh read_tetgen(const std::filesystem::path& path) {
   const std::string node_text = read_file(node_path);
   TokenReader nodes(node_source, node_text);
   const std::size_t header_line = nodes.line();
-  const long long declared = nodes.integer("the number of points");
-  const long long dimension = nodes.integer("the dimension");
-  const long long attributes = nodes.integer("the number of attributes");
-  const long long markers = nodes.integer("the number of boundary markers");
+  const auto [declared, dimension, attributes, markers] = header_integers<4>(
+      nodes, {"the number of points", "the dimension", "the number of attributes", "the number of boundary markers"});
   if (dimension != 3) nodes.fail("dimension is " + std::to_string(dimension) + "; a tetrahedral mesh needs 3", header_line);
   if (attributes < 0 || markers < 0 || markers > 1) nodes.fail("bad attribute or boundary-marker count", header_line);
   if (declared < 0) nodes.fail("the number of points is negative", header_line);
@@ -312,9 +318,8 @@ TetrahedralMesh read_tetgen(const std::filesystem::path& path) {
   const std::string ele_text = read_file(ele_path);
   TokenReader elements(ele_source, ele_text);
   const std::size_t ele_header = elements.line();
-  const long long tetrahedra = elements.integer("the number of tetrahedra");
-  const long long corners = elements.integer("the number of nodes per tetrahedron");
-  const long long regions = elements.integer("the number of region attributes");
+  const auto [tetrahedra, corners, regions] = header_integers<3>(
+      elements, {"the number of tetrahedra", "the number of nodes per tetrahedron", "the number of region attributes"});
   if (corners != 4) {
     elements.fail(std::to_string(corners) + " nodes per tetrahedron; only linear (4-node) tetrahedra are read", ele_header);
   }
