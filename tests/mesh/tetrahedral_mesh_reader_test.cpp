@@ -186,6 +186,9 @@ TEST(TetrahedralMeshReader, LegacyVtkTetrahedra) {
                  "VTK_HEXAHEDRON");
   expect_invalid(write(dir, "poly.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 0 double\n"),
                  (dir / "poly.vtk").string(), "UNSTRUCTURED_GRID");
+  // A truncated file: what VTK says, located at the file.
+  expect_invalid(write(dir, "truncated.vtk", header + "CELLS 2 10\n4 0 1 2 3\n"), (dir / "truncated.vtk").string(),
+                 "Error reading");
   EXPECT_THROW(read_tetrahedral_mesh(dir / "missing.vtk"), IoError);
   expect_invalid(write(dir, "cube.stl", "solid\n"), (dir / "cube.stl").string(), "unknown tetrahedral mesh format");
 }
