@@ -445,24 +445,29 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
   while (!dirty_tetrahedra.empty() || !dirty_boundary.empty()) {
     CloudPoints points = cloud_points(clouds);
     std::vector<int> to_halve;
-    const auto mark = [&](int v, auto&& error) {
-      if (halvings[v] >= kMaxKnotCloudHalvings) throw error();
+    const auto mark = [&](int v) {
       if (!marked[v]) {
         marked[v] = 1;
         to_halve.push_back(v);
       }
     };
+    const auto can_halve = [&](int v) { return halvings[v] < kMaxKnotCloudHalvings; };
     for (int t : dirty_tetrahedra) {
       const auto& tet = domain.tetrahedra[t];
       // The centroid certificate only: shrinking drives every knot tetrahedron towards I, which
       // holds its centroid, so clouds built here are certified without the linear programme.
       const TetrahedronCheck check = check_tetrahedron(points, tet, subs, spaces, false);
       if (check.violation == Violation::kNone) continue;
-      for (int v : tet) mark(v, [&] { return tetrahedron_error(clouds, domain, t, check); });
+      // The corners that can still shrink do; when none can, the tetrahedron is beyond repair.
+      if (std::none_of(tet.begin(), tet.end(), can_halve)) throw tetrahedron_error(clouds, domain, t, check);
+      for (int v : tet) {
+        if (can_halve(v)) mark(v);
+      }
     }
     for (int v : dirty_boundary) {
       if (const auto inside = sub_knot_inside(locator, clouds, v)) {
-        mark(v, [&] { return outside_error(clouds, boundary[boundary_slot[v]], inside->first, inside->second); });
+        if (!can_halve(v)) throw outside_error(clouds, boundary[boundary_slot[v]], inside->first, inside->second);
+        mark(v);
       }
     }
     dirty_tetrahedra.clear();

@@ -43,7 +43,8 @@ std::vector<std::array<int, 4>> knot_tetrahedron_indices(int degree);
 /// \throw InvalidInput for a degree outside 0..kMaxKnotCloudDegree, a spread outside (0, 0.5)
 /// (at 0.5 the clouds of an edge's two ends could meet), a domain that fails
 /// validate_tetrahedral_mesh, or, naming `tetrahedra[i]`, a tetrahedron whose checks still fail
-/// after the last halving.
+/// when none of its corners can be halved again (or whose boundary face has a vertex at the
+/// limit with a sub-knot still inside Ω).
 KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const KnotCloudOptions& options = {});
 
 /// How often generate_knot_clouds halves a vertex's spread before it gives up (2^-30: about
