@@ -13,7 +13,9 @@ struct SurfaceTetrahedralizationOptions {
   int seed = 0;
 };
 
-/// Tetrahedralises the inside of a closed, oriented triangle mesh (TriangleMesh from mesh/triangle_mesh.h) by CGAL Mesh_3 (Polyhedral_mesh_domain_3 or the _with_features variant; make it deterministic), returns a validated TetrahedralMesh. \throw InvalidInput if the surface is not closed.
+/// Tetrahedralises the inside of a closed, consistently oriented triangle mesh by CGAL Mesh_3 and
+/// returns a validated TetrahedralMesh. \throw InvalidInput if the surface is not closed or not
+/// consistently oriented (located at `triangles`).
 /// The domain is Polyhedral_mesh_domain_with_features_3: edges whose faces meet at more than 60°
 /// are protected (edge size `cell_size`), so flat faces and sharp edges are kept exactly.
 /// Mesh_3 criteria: cell size and facet size `cell_size`, facet distance (the largest distance

@@ -23,7 +23,8 @@ struct TetrahedralMesh {
 inline constexpr std::array<std::array<int, 3>, 4> kOutwardTetrahedronFaces{
     {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
 
-/// Faces that belong to exactly one tetrahedron, oriented outward (counter-clockwise seen from outside), with the tetrahedron's index.
+/// A face that belongs to exactly one tetrahedron, oriented outward (counter-clockwise seen from
+/// outside), with the tetrahedron's index.
 struct BoundaryFace {
   std::array<int, 3> vertices;
   int tetrahedron;
@@ -39,12 +40,15 @@ std::vector<BoundaryFace> boundary_faces(const TetrahedralMesh& mesh);
 /// For each point, whether it lies on a boundary face (the same assumptions as boundary_faces).
 std::vector<bool> boundary_vertices(const TetrahedralMesh& mesh);
 
-/// Reorients negatively oriented tetrahedra (swap two corners); \throw InvalidInput naming "tetrahedra[i]" for a degenerate one (exact orientation predicate)
-/// or one whose index is out of range, or naming "points[i]" for a coordinate that is not finite.
+/// Reorients negatively oriented tetrahedra (swaps corners 2 and 3).
+/// \throw InvalidInput naming `tetrahedra[i]` for a degenerate one (exact orientation predicate)
+/// or one with an index out of range or a repeated corner, or naming `points[i]` for a
+/// coordinate that is not finite.
 void orient_positively(TetrahedralMesh& mesh);
 
-/// Checks: indices in range, no degenerate tetrahedron (exact predicate), positive orientation, every face shared by at most two tetrahedra with opposite orientation (a proper, face-conforming mesh), no unused points.
-/// Also: at least one tetrahedron, finite coordinates, four distinct corners. Not checked
+/// Checks: indices in range, no degenerate tetrahedron (exact predicate), positive orientation,
+/// every face shared by at most two tetrahedra with opposite orientation (a proper,
+/// face-conforming mesh), no unused points. Also: at least one tetrahedron, finite coordinates, four distinct corners. Not checked
 /// (it needs intersection tests): that tetrahedra sharing no face do not overlap.
 /// \throw InvalidInput naming the tetrahedron (`tetrahedra[i]`) and what is wrong, or the point
 /// (`points[i]`) that is unused or not finite.

@@ -33,10 +33,12 @@ inline constexpr int kMaxKnotCloudDegree = 5;
 /// C(degree + 4, 4) of them, lexicographically ordered. \throw InvalidInput for a negative degree.
 std::vector<std::array<int, 4>> knot_tetrahedron_indices(int degree);
 
-/// Generates valid clouds: t_0 is the vertex; interior vertices get sub-knots near it in fixed, deterministic, well-spread directions;
-/// vertices on ∂Ω get their sub-knots outside Ω (along an outward pseudo-normal, so that every boundary face's knots lie outside Ω as §3.2
-/// requires), each checked against eq. 3 and the non-degeneracy condition, shrinking the spread locally where a check fails.
-/// Say in the docs what happens when no spread works (an InvalidInput naming the tetrahedron). Deterministic.
+/// Generates valid clouds: t_0 is the vertex; interior vertices get sub-knots near it in fixed,
+/// deterministic, well-spread directions; vertices on ∂Ω get their sub-knots outside Ω (along
+/// the outward pseudo-normal, so that every boundary face's knots lie outside Ω as §3.2
+/// requires). Every tetrahedron is checked against eq. 3 and the non-degeneracy condition, and
+/// the spread is shrunk locally where a check fails; when no spread works, InvalidInput names
+/// the tetrahedron (docs/tetrahedral-domains.md, "What cannot be made valid"). Deterministic.
 /// The result passes validate_knot_clouds. Sub-knot l of a vertex lies at distance
 /// spread * e * (n + l) / (2n) from it (e: its shortest incident edge), halved for the vertex
 /// each time a check of an incident tetrahedron fails, at most kMaxKnotCloudHalvings times.
@@ -51,10 +53,13 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
 /// 1e-9 of the spread).
 inline constexpr int kMaxKnotCloudHalvings = 30;
 
-/// The checks of §3.2 for every tetrahedron I = (p,q,r,s): all [p_i, q_j, r_k, s_l], i+j+k+l <= n, non-degenerate with the
-/// orientation of I (exact predicate); the interior of their intersection non-empty (eq. 3) — certify cheaply where possible (a point
-/// strictly inside all of them, e.g. I's centroid) and otherwise decide it exactly (a small LP: CGAL's QP solver, CGAL/QP_functions.h,
-/// maximise the common slack); knots of boundary faces outside Ω. \throw InvalidInput naming `tetrahedra[i]`, the condition and the knots.
+/// The checks of §3.2 for every tetrahedron I = (p, q, r, s): all [p_i, q_j, r_k, s_l],
+/// i+j+k+l <= n, non-degenerate with the orientation of I (exact predicate); the interior of
+/// their intersection non-empty (eq. 3) — certified by a point strictly inside all of them (I's
+/// centroid, else a relaxation-method candidate, each tested exactly) and otherwise decided
+/// exactly by a small linear programme (CGAL's QP solver over Gmpzf, maximising the common
+/// slack); the sub-knots of boundary faces outside Ω.
+/// \throw InvalidInput naming `tetrahedra[i]`, the condition and the knots.
 /// "Outside Ω" is strict: a sub-knot on ∂Ω is inside. Also checked first: the degree is in
 /// 0..kMaxKnotCloudDegree, there are degree + 1 finite knots per point of the domain (else
 /// InvalidInput naming `knots`), each cloud's t_0 is its vertex exactly (else naming
