@@ -7,8 +7,10 @@
 
 // Boost.Graph's edge descriptors, copied inside CGAL's feature detection, trip GCC 12's
 // -Wmaybe-uninitialized; the warning is about library code, not this file.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
@@ -17,7 +19,9 @@
 #include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/make_mesh_3.h>
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"

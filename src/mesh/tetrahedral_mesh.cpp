@@ -5,6 +5,8 @@
 #include <string>
 #include <tuple>
 
+#include <Eigen/Geometry>
+
 #include "exact_orientation.h"
 #include "volspline/core/error.h"
 

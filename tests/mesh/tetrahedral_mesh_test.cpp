@@ -1,5 +1,6 @@
 #include "volspline/mesh/tetrahedral_mesh.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "support/tetrahedral_domains.h"
