@@ -4,6 +4,9 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include "volspline/core/error.h"
 
 namespace volspline::simplex_detail {
 namespace {
@@ -62,6 +65,13 @@ void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const st
                               SubsetMemo& index) {
   const int cloud_size = degree + 1;
   knot_count_ = 4 * cloud_size;
+  for (int i = 0; i < knot_count_; ++i) {
+    if (!knots[i].allFinite()) {
+      throw InvalidInput("knot " + std::to_string(i % cloud_size) + " of cloud " + std::to_string(i / cloud_size) +
+                         " is not finite");
+    }
+  }
+  built_ = false;
   std::copy(knots, knots + knot_count_, knots_.begin());
   lo_ = knots_[0];
   hi_ = knots_[0];

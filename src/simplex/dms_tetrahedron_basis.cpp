@@ -99,12 +99,14 @@ DmsTetrahedronBasis& DmsTetrahedronBasis::operator=(DmsTetrahedronBasis&&) noexc
 void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const std::array<const Eigen::Vector3d*, 4>& clouds,
                                    int order, DmsBasisValues& out) {
   if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
+  if (!x.allFinite()) throw InvalidInput("the point must be finite");
   evaluate_plan(x, state_->plan(clouds, multi_indices_), order, out);
 }
 
 void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const DmsTetrahedronPlan& plan, int order,
                                    DmsBasisValues& out) {
   if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
+  if (!x.allFinite()) throw InvalidInput("the point must be finite");
   evaluate_plan(x, checked(plan), order, out);
 }
 
@@ -155,12 +157,14 @@ void DmsTetrahedronBasis::line_integrals(const Eigen::Vector3d& origin, const Ei
                                          double b, const std::array<const Eigen::Vector3d*, 4>& clouds,
                                          std::vector<double>& out) {
   if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
+  if (!origin.allFinite() || !direction.allFinite()) throw InvalidInput("the line must be finite");
   line_integrals_plan(origin, direction, a, b, state_->plan(clouds, multi_indices_), out);
 }
 
 void DmsTetrahedronBasis::line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a,
                                          double b, const DmsTetrahedronPlan& plan, std::vector<double>& out) {
   if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
+  if (!origin.allFinite() || !direction.allFinite()) throw InvalidInput("the line must be finite");
   line_integrals_plan(origin, direction, a, b, checked(plan), out);
 }
 

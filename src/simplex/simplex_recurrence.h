@@ -69,7 +69,7 @@ inline bool half_open_contains(const std::array<double, 4>& lambda, const Eigen:
   constexpr double kUndecided = 1e-9;
   bool clearly_inside = true;
   for (const double l : lambda) {
-    if (l < -kUndecided) return false;
+    if (!(l >= -kUndecided)) return false;  // NaN too
     if (l <= kUndecided) clearly_inside = false;
   }
   return clearly_inside || in_half_open_tetrahedron(x, a, b, c, d);

@@ -265,6 +265,11 @@ TEST(DmsTetrahedronBasis, PlansCompiledBeforehandGiveTheSameBasis) {
   EXPECT_THROW(cubic.evaluate(Vector3d::Zero(), plan, 0, from_plan), InvalidInput);
   EXPECT_THROW(basis.evaluate(Vector3d::Zero(), DmsTetrahedronPlan(), 0, from_plan), InvalidInput);
   EXPECT_THROW(DmsTetrahedronPlan(6, clouds.pointers()), InvalidInput);
+  Clouds broken = clouds;
+  broken.knots[2][1].x() = std::nan("");
+  EXPECT_THROW(DmsTetrahedronPlan(2, broken.pointers()), InvalidInput);
+  EXPECT_THROW(basis.evaluate(Vector3d(0.1, 0.1, 0.1), broken.pointers(), 0, from_plan), InvalidInput);
+  EXPECT_THROW(basis.evaluate(Vector3d(std::nan(""), 0, 0), plan, 0, from_plan), InvalidInput);
 }
 
 }  // namespace
