@@ -131,18 +131,19 @@ void DmsTetrahedronBasis::evaluate_plan(const Eigen::Vector3d& x, const simplex_
   const int n = degree_;
   for (std::size_t b = 0; b < count; ++b) {
     const int top = plan.top(static_cast<int>(b));
-    const auto& node = plan.node(top);
     const double scale = plan.scale(static_cast<int>(b));
     out.values[b] = scale * m[top];
-    if (order == 0 || n == 0 || node.flat) continue;
+    if (order == 0 || n == 0) continue;
+    const auto& node = plan.interior(top);
+    if (node.flat) continue;
     // Eq. 2: ∇M(V) = n Σ_j ∇λ_j M(V \ w_j); for the Hessian eq. 2 again on each M(V \ w_j).
     Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
     Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
     for (int j = 0; j < 4; ++j) {
       const int c = node.child[j];
       gradient += node.frame.g[j] * m[c];
-      if (order == 2 && n >= 2 && !plan.node(c).flat) {
-        const auto& child = plan.node(c);
+      if (order == 2 && n >= 2 && !plan.interior(c).flat) {
+        const auto& child = plan.interior(c);
         Eigen::Vector3d child_gradient = Eigen::Vector3d::Zero();
         for (int k = 0; k < 4; ++k) child_gradient += child.frame.g[k] * m[child.child[k]];
         hessian += node.frame.g[j] * child_gradient.transpose();
