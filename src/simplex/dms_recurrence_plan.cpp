@@ -118,10 +118,13 @@ int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMe
   if (const double* known = index.find(subset)) return static_cast<int>(*known);
   std::array<int, 4> w{};
   int code;
-  if (std::popcount(subset) == 4) {
-    std::array<int, kMaxRecurrenceKnots> idx{};
-    subset_indices(subset, idx);
-    w = {idx[0], idx[1], idx[2], idx[3]};
+  const int knots_in_subset = std::popcount(subset);
+  if (knots_in_subset == 4) {
+    KnotMask rest = subset;
+    for (int& k : w) {
+      k = std::countr_zero(rest);
+      rest &= rest - 1;
+    }
     BarycentricFrame frame;
     PlanLeaf leaf{};
     if (make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], frame)) {
@@ -138,7 +141,7 @@ int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMe
   } else {
     PlanNode node;
     node.mask = subset;
-    node.degree = static_cast<std::int8_t>(std::popcount(subset) - 4);
+    node.degree = static_cast<std::int8_t>(knots_in_subset - 4);
     node.flat = !choose_dms_knots(knots_, cloud_size_, subset, w, node.frame, binding);
     if (!node.flat) {
       for (int j = 0; j < 4; ++j) node.child[j] = add(subset & ~(KnotMask{1} << w[j]), binding, index);
