@@ -60,7 +60,6 @@ class DmsRecurrencePlan {
              SubsetMemo& index);
   /// Whether the plan was built for exactly these knot coordinates.
   bool matches(const Eigen::Vector3d* knots) const;
-  bool built() const { return built_; }
   /// Releases spare capacity (for plans kept per tetrahedron).
   void shrink_to_fit() {
     interior_.shrink_to_fit();
