@@ -4,6 +4,9 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include "volspline/core/error.h"
 
 namespace volspline::simplex_detail {
 namespace {
@@ -62,6 +65,13 @@ void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const st
                               SubsetMemo& index) {
   const int cloud_size = degree + 1;
   knot_count_ = 4 * cloud_size;
+  for (int i = 0; i < knot_count_; ++i) {
+    if (!knots[i].allFinite()) {
+      throw InvalidInput("knot " + std::to_string(i % cloud_size) + " of cloud " + std::to_string(i / cloud_size) +
+                         " is not finite");
+    }
+  }
+  built_ = false;
   std::copy(knots, knots + knot_count_, knots_.begin());
   lo_ = knots_[0];
   hi_ = knots_[0];
@@ -76,7 +86,8 @@ void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const st
   binding.bind(knots_.data(), knot_count_, BarycentricChoice::kLargest, &vertices);
   index.reserve(expected_dms_subsets(degree));
   index.clear();
-  nodes_.clear();
+  leaves_.clear();
+  interior_.clear();
   tops_.clear();
   scales_.clear();
   for (const auto& beta : betas) {
@@ -86,6 +97,15 @@ void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const st
     scales_.push_back(std::abs(oriented_det(knots_[beta[0]], knots_[cloud_size + beta[1]],
                                             knots_[2 * cloud_size + beta[2]], knots_[3 * cloud_size + beta[3]])));
   }
+  // Number leaves first, then the larger subsets (which already come children first).
+  const int leaf_count = this->leaf_count();
+  const auto number = [leaf_count](int code) { return code < 0 ? -1 - code : leaf_count + code; };
+  for (PlanNode& n : interior_) {
+    if (!n.flat) {
+      for (auto& c : n.child) c = number(c);
+    }
+  }
+  for (int& t : tops_) t = number(t);
   built_ = true;
 }
 
@@ -96,47 +116,69 @@ bool DmsRecurrencePlan::matches(const Eigen::Vector3d* knots) const {
 // Depth first, so that a node's children precede it; returns the node of `subset`.
 int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMemo& index) {
   if (const double* known = index.find(subset)) return static_cast<int>(*known);
-  PlanNode node;
-  node.mask = subset;
-  node.degree = static_cast<std::int8_t>(std::popcount(subset) - 4);
   std::array<int, 4> w{};
-  if (node.degree == 0) {
-    std::array<int, kMaxRecurrenceKnots> idx{};
-    subset_indices(subset, idx);
-    w = {idx[0], idx[1], idx[2], idx[3]};
-    node.flat = !make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], node.frame);
-    if (!node.flat) node.inverse_volume = 1.0 / std::abs(node.frame.det);
+  int code;
+  const int knots_in_subset = std::popcount(subset);
+  if (knots_in_subset == 4) {
+    KnotMask rest = subset;
+    for (int& k : w) {
+      k = std::countr_zero(rest);
+      rest &= rest - 1;
+    }
+    BarycentricFrame frame;
+    PlanLeaf leaf{};
+    if (make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], frame)) {
+      leaf.origin = {frame.origin.x(), frame.origin.y(), frame.origin.z()};
+      for (int j = 0; j < 3; ++j) {
+        for (int k = 0; k < 3; ++k) leaf.g[3 * j + k] = frame.g[j + 1][k];
+      }
+      leaf.inverse_volume = 1.0 / std::abs(frame.det);
+    }
+    leaf.mask = subset;
+    for (int j = 0; j < 4; ++j) leaf.w[j] = static_cast<std::int8_t>(w[j]);
+    code = -1 - static_cast<int>(leaves_.size());
+    leaves_.push_back(leaf);
   } else {
+    PlanNode node;
+    node.mask = subset;
+    node.degree = static_cast<std::int8_t>(knots_in_subset - 4);
     node.flat = !choose_dms_knots(knots_, cloud_size_, subset, w, node.frame, binding);
     if (!node.flat) {
       for (int j = 0; j < 4; ++j) node.child[j] = add(subset & ~(KnotMask{1} << w[j]), binding, index);
     }
+    for (int j = 0; j < 4; ++j) node.w[j] = static_cast<std::int8_t>(w[j]);
+    code = static_cast<int>(interior_.size());
+    interior_.push_back(node);
   }
-  for (int j = 0; j < 4; ++j) node.w[j] = static_cast<std::int8_t>(w[j]);
-  const int position = static_cast<int>(nodes_.size());
-  nodes_.push_back(node);
-  index.store(subset, position);
-  return position;
+  index.store(subset, code);
+  return code;
 }
 
 void DmsRecurrencePlan::values(const Eigen::Vector3d& x, double* out) const {
-  const int count = size();
-  for (int i = 0; i < count; ++i) {
-    const PlanNode& n = nodes_[i];
-    if (n.flat) {
+  constexpr double kUndecided = 1e-9;  // as half_open_contains
+  const int leaf_count = this->leaf_count();
+  for (int i = 0; i < leaf_count; ++i) {
+    const PlanLeaf& f = leaves_[i];
+    const auto l = f.lambda(x);
+    const double smallest = std::min(std::min(l[0], l[1]), std::min(l[2], l[3]));
+    if (smallest > kUndecided) {
+      out[i] = f.inverse_volume;
+    } else if (!(smallest >= -kUndecided) || f.inverse_volume == 0) {
       out[i] = 0;
-      continue;
-    }
-    const auto l = n.frame.lambda(x);
-    if (n.degree == 0) {
-      out[i] = half_open_contains(l, x, knots_[n.w[0]], knots_[n.w[1]], knots_[n.w[2]], knots_[n.w[3]])
-                   ? n.inverse_volume
-                   : 0.0;
     } else {
-      double v = 0;
-      for (int j = 0; j < 4; ++j) v += l[j] * out[n.child[j]];
-      out[i] = v;
+      out[i] = in_half_open_tetrahedron(x, knots_[f.w[0]], knots_[f.w[1]], knots_[f.w[2]], knots_[f.w[3]])
+                   ? f.inverse_volume
+                   : 0.0;
     }
+  }
+  double* interior_out = out + leaf_count;
+  for (const PlanNode& n : interior_) {
+    double v = 0;
+    if (!n.flat) {
+      const auto l = n.frame.lambda(x);
+      for (int j = 0; j < 4; ++j) v += l[j] * out[n.child[j]];
+    }
+    *interior_out++ = v;
   }
 }
 
@@ -168,8 +210,20 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
       values(end, at);
     }
   }
-  for (int i = 0; i < count; ++i) {
-    const PlanNode& n = nodes_[i];
+  const int leaf_count = this->leaf_count();
+  for (int i = 0; i < leaf_count; ++i) {
+    const PlanLeaf& f = leaves_[i];
+    if (f.inverse_volume == 0) {
+      out[i] = flat_line_integral(knots_.data(), f.mask, o, direction, lower, upper);
+      continue;
+    }
+    double s_lo = lower;
+    double s_hi = upper;
+    clip_to_chord(f.lambda(o), f.mu(direction), s_lo, s_hi);
+    out[i] = s_hi > s_lo ? (s_hi - s_lo) * f.inverse_volume : 0.0;
+  }
+  for (int i = leaf_count; i < count; ++i) {
+    const PlanNode& n = interior(i);
     if (n.flat) {
       out[i] = flat_line_integral(knots_.data(), n.mask, o, direction, lower, upper);
       continue;
@@ -177,19 +231,10 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
     // Eq. 16 about the middle of the chord of W's tetrahedron (recurrence_shift).
     const auto m = n.frame.mu(direction);
     const auto l0 = n.frame.lambda(o);
-    if (n.degree == 0) {
-      double s_lo = lower;
-      double s_hi = upper;
-      clip_to_chord(l0, m, s_lo, s_hi);
-      out[i] = s_hi > s_lo ? (s_hi - s_lo) * n.inverse_volume : 0.0;
-      continue;
-    }
     const Eigen::Vector3d centroid = 0.25 * (knots_[n.w[0]] + knots_[n.w[1]] + knots_[n.w[2]] + knots_[n.w[3]]);
     const double shift = recurrence_shift(l0, m, centroid, o, direction, lower, upper);
-    std::array<double, 4> l;
-    for (int j = 0; j < 4; ++j) l[j] = l0[j] + shift * m[j];
     double sum = 0;
-    for (int j = 0; j < 4; ++j) sum += l[j] * out[n.child[j]];
+    for (int j = 0; j < 4; ++j) sum += (l0[j] + shift * m[j]) * out[n.child[j]];
     const double boundary = (upper - shift) * at_upper[i] - (lower - shift) * at_lower[i];
     out[i] = (n.degree * sum + boundary) / (n.degree + 1);
   }

@@ -99,12 +99,14 @@ DmsTetrahedronBasis& DmsTetrahedronBasis::operator=(DmsTetrahedronBasis&&) noexc
 void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const std::array<const Eigen::Vector3d*, 4>& clouds,
                                    int order, DmsBasisValues& out) {
   if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
+  if (!x.allFinite()) throw InvalidInput("the point must be finite");
   evaluate_plan(x, state_->plan(clouds, multi_indices_), order, out);
 }
 
 void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const DmsTetrahedronPlan& plan, int order,
                                    DmsBasisValues& out) {
   if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
+  if (!x.allFinite()) throw InvalidInput("the point must be finite");
   evaluate_plan(x, checked(plan), order, out);
 }
 
@@ -129,18 +131,19 @@ void DmsTetrahedronBasis::evaluate_plan(const Eigen::Vector3d& x, const simplex_
   const int n = degree_;
   for (std::size_t b = 0; b < count; ++b) {
     const int top = plan.top(static_cast<int>(b));
-    const auto& node = plan.node(top);
     const double scale = plan.scale(static_cast<int>(b));
     out.values[b] = scale * m[top];
-    if (order == 0 || n == 0 || node.flat) continue;
+    if (order == 0 || n == 0) continue;
+    const auto& node = plan.interior(top);
+    if (node.flat) continue;
     // Eq. 2: ∇M(V) = n Σ_j ∇λ_j M(V \ w_j); for the Hessian eq. 2 again on each M(V \ w_j).
     Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
     Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
     for (int j = 0; j < 4; ++j) {
       const int c = node.child[j];
       gradient += node.frame.g[j] * m[c];
-      if (order == 2 && n >= 2 && !plan.node(c).flat) {
-        const auto& child = plan.node(c);
+      if (order == 2 && n >= 2 && !plan.interior(c).flat) {
+        const auto& child = plan.interior(c);
         Eigen::Vector3d child_gradient = Eigen::Vector3d::Zero();
         for (int k = 0; k < 4; ++k) child_gradient += child.frame.g[k] * m[child.child[k]];
         hessian += node.frame.g[j] * child_gradient.transpose();
@@ -155,12 +158,14 @@ void DmsTetrahedronBasis::line_integrals(const Eigen::Vector3d& origin, const Ei
                                          double b, const std::array<const Eigen::Vector3d*, 4>& clouds,
                                          std::vector<double>& out) {
   if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
+  if (!origin.allFinite() || !direction.allFinite()) throw InvalidInput("the line must be finite");
   line_integrals_plan(origin, direction, a, b, state_->plan(clouds, multi_indices_), out);
 }
 
 void DmsTetrahedronBasis::line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a,
                                          double b, const DmsTetrahedronPlan& plan, std::vector<double>& out) {
   if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
+  if (!origin.allFinite() || !direction.allFinite()) throw InvalidInput("the line must be finite");
   line_integrals_plan(origin, direction, a, b, checked(plan), out);
 }
 

@@ -284,7 +284,6 @@ void PointRecurrence::set_point(const Eigen::Vector3d& x) {
   memo_.clear();
 }
 
-const Eigen::Vector3d* PointRecurrence::choice_point() const { return &x_; }
 
 double PointRecurrence::value(KnotMask subset) {
   if (const double* known = memo_.find(subset)) return *known;
@@ -304,7 +303,7 @@ double PointRecurrence::value(KnotMask subset) {
     } else {
       std::array<int, 4> w{};
       BarycentricFrame frame;
-      if (binding_->choose(subset, choice_point(), w, frame)) {
+      if (binding_->choose(subset, &x_, w, frame)) {
         const auto l = frame.lambda(x_);
         for (int j = 0; j < 4; ++j) {
           if (l[j] != 0) v += l[j] * value(subset & ~bit(w[j]));
@@ -322,7 +321,7 @@ Eigen::Vector3d PointRecurrence::gradient(KnotMask subset) {
   if (degree <= 0 || pruned(subset)) return g;
   std::array<int, 4> w{};
   BarycentricFrame frame;
-  if (!binding_->choose(subset, choice_point(), w, frame)) return g;
+  if (!binding_->choose(subset, &x_, w, frame)) return g;
   for (int j = 0; j < 4; ++j) g += frame.g[j] * value(subset & ~bit(w[j]));
   return degree * g;
 }
@@ -336,7 +335,7 @@ SimplexSplineJet PointRecurrence::jet(KnotMask subset, int order) {
   }
   std::array<int, 4> w{};
   BarycentricFrame frame;
-  if (!binding_->choose(subset, choice_point(), w, frame)) return out;
+  if (!binding_->choose(subset, &x_, w, frame)) return out;
   const auto l = frame.lambda(x_);
   for (int j = 0; j < 4; ++j) {
     const KnotMask child = subset & ~bit(w[j]);

@@ -69,7 +69,7 @@ inline bool half_open_contains(const std::array<double, 4>& lambda, const Eigen:
   constexpr double kUndecided = 1e-9;
   bool clearly_inside = true;
   for (const double l : lambda) {
-    if (l < -kUndecided) return false;
+    if (!(l >= -kUndecided)) return false;  // NaN too
     if (l <= kUndecided) clearly_inside = false;
   }
   return clearly_inside || in_half_open_tetrahedron(x, a, b, c, d);
@@ -131,7 +131,6 @@ class KnotBinding {
   const Eigen::Vector3d& knot(int i) const { return knots_[i]; }
   int count() const { return count_; }
   const BarycentricFrame& reference_frame() const { return reference_; }
-  const std::array<double, 4>& knot_coordinates(int i) const { return coordinates_[i]; }
   void set_custom_choice(const CustomChoice* custom) { custom_ = custom; }
 
   /// W and its frame for `subset` (at least 5 knots); `x` is the point for
@@ -187,7 +186,6 @@ class PointRecurrence {
  public:
   void attach(const KnotBinding* binding, int expected_subsets);
   void set_point(const Eigen::Vector3d& x);
-  const Eigen::Vector3d& point() const { return x_; }
   double value(KnotMask subset);
   /// Value, gradient and (order 2) Hessian of M(x | subset) by eqs. 1-2.
   SimplexSplineJet jet(KnotMask subset, int order);
@@ -197,7 +195,6 @@ class PointRecurrence {
  private:
   bool pruned(KnotMask subset) const { return binding_->excludes(subset, coordinates_, coordinates_); }
   Eigen::Vector3d gradient(KnotMask subset);
-  const Eigen::Vector3d* choice_point() const;
 
   const KnotBinding* binding_ = nullptr;
   SubsetMemo memo_;

@@ -30,6 +30,16 @@ void check_knot_count(std::size_t count) {
 
 KnotMask all_knots(std::size_t count) { return (KnotMask{1} << count) - 1; }
 
+void check_finite(const Eigen::Vector3d& v, const char* what) {
+  if (!v.allFinite()) throw InvalidInput(std::string(what) + " must be finite");
+}
+
+void check_finite(std::span<const Eigen::Vector3d> knots) {
+  for (const auto& k : knots) {
+    if (!k.allFinite()) throw InvalidInput("simplex spline knots must be finite");
+  }
+}
+
 // Eq. 1 without memoisation over the knots of `subset`.
 double reference_value(const Eigen::Vector3d& x, const std::array<Eigen::Vector3d, kMaxTrivariateKnots>& knots,
                        const KnotBinding& binding, KnotMask subset) {
@@ -148,6 +158,8 @@ ThreadRecurrences& thread_recurrences() {
 
 double simplex_spline_value(const Eigen::Vector3d& x, std::span<const Eigen::Vector3d> knots) {
   check_knot_count(knots.size());
+  check_finite(knots);
+  check_finite(x, "the point");
   std::array<Eigen::Vector3d, kMaxTrivariateKnots> copy{};
   std::copy(knots.begin(), knots.end(), copy.begin());
   KnotBinding binding;
@@ -157,6 +169,8 @@ double simplex_spline_value(const Eigen::Vector3d& x, std::span<const Eigen::Vec
 
 SimplexSplineJet simplex_spline_jet(const Eigen::Vector3d& x, std::span<const Eigen::Vector3d> knots, int order) {
   check_knot_count(knots.size());
+  check_finite(knots);
+  check_finite(x, "the point");
   if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
   auto& r = thread_recurrences();
   r.binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest);
@@ -167,6 +181,9 @@ SimplexSplineJet simplex_spline_jet(const Eigen::Vector3d& x, std::span<const Ei
 double simplex_spline_directional_derivative(const Eigen::Vector3d& x, std::span<const Eigen::Vector3d> knots,
                                              const Eigen::Vector3d& v) {
   check_knot_count(knots.size());
+  check_finite(knots);
+  check_finite(x, "the point");
+  check_finite(v, "the direction");
   auto& r = thread_recurrences();
   r.binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest);
   r.point.set_point(x);
@@ -178,6 +195,10 @@ double bivariate_simplex_spline_value(const Eigen::Vector2d& y, std::span<const 
     throw InvalidInput("a bivariate simplex spline needs 3.." + std::to_string(kMaxBivariateKnots) + " knots, got " +
                        std::to_string(knots.size()));
   }
+  if (!y.allFinite()) throw InvalidInput("the point must be finite");
+  for (const auto& k : knots) {
+    if (!k.allFinite()) throw InvalidInput("simplex spline knots must be finite");
+  }
   std::array<Eigen::Vector2d, kMaxBivariateKnots> copy{};
   std::copy(knots.begin(), knots.end(), copy.begin());
   return bivariate_value(y, copy, all_knots(knots.size()));
@@ -186,6 +207,9 @@ double bivariate_simplex_spline_value(const Eigen::Vector2d& y, std::span<const 
 double simplex_spline_line_integral(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a,
                                     double b, std::span<const Eigen::Vector3d> knots) {
   check_knot_count(knots.size());
+  check_finite(knots);
+  check_finite(origin, "the line's origin");
+  check_finite(direction, "the line's direction");
   if (!(a <= b)) throw InvalidInput("line integral bounds must satisfy a <= b");
   auto& r = thread_recurrences();
   r.binding.bind(knots.data(), static_cast<int>(knots.size()), BarycentricChoice::kLargest);
@@ -196,6 +220,8 @@ double simplex_spline_line_integral(const Eigen::Vector3d& origin, const Eigen::
 double simplex_spline_full_line_integral_by_projection(const Eigen::Vector3d& x, const Eigen::Vector3d& d,
                                                        std::span<const Eigen::Vector3d> knots) {
   check_knot_count(knots.size());
+  check_finite(knots);
+  check_finite(x, "the point");
   const double length = d.norm();
   if (!(length > 0) || !std::isfinite(length)) throw InvalidInput("line direction must be nonzero and finite");
   const Eigen::Vector3d u = d / length;

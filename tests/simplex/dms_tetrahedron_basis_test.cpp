@@ -109,6 +109,38 @@ TEST(DmsTetrahedronBasis, MemoisedBasisEqualsScaledReferenceSplines) {
   }
 }
 
+// Sub-knots at exactly representable offsets and points on a grid: many points lie on knot planes,
+// the domain tetrahedron's faces and edges, and the compiled recurrence (its own choice of W) must
+// agree with the reference there too, by the half-open rule.
+TEST(DmsTetrahedronBasis, AgreesWithTheReferenceOnKnotPlanes) {
+  const std::array<Vector3d, 4> vertices = {Vector3d::Zero(), Vector3d(4, 0, 0), Vector3d(0, 4, 0),
+                                            Vector3d(0, 0, 4)};
+  const std::array<Vector3d, 4> offsets = {Vector3d(-1, 0, 0.5), Vector3d(0.5, -0.5, 0), Vector3d(0, 0.5, -0.5),
+                                           Vector3d(0.5, 0, 0.5)};
+  for (int n = 1; n <= 3; ++n) {
+    Clouds clouds;
+    for (int c = 0; c < 4; ++c) {
+      clouds.knots[c].push_back(vertices[c]);
+      for (int i = 1; i <= n; ++i) clouds.knots[c].push_back(vertices[c] + i * offsets[(c + i) % 4]);
+    }
+    DmsTetrahedronBasis basis(n);
+    DmsBasisValues out;
+    for (int i = -1; i <= 5; ++i) {
+      for (int j = -1; j <= 5; ++j) {
+        for (int k = -1; k <= 5; ++k) {
+          const Vector3d x(i * 0.75, j * 0.75, k * 0.75);
+          basis.evaluate(x, clouds.pointers(), 0, out);
+          for (int b = 0; b < basis.size(); ++b) {
+            const auto& beta = basis.multi_indices()[b];
+            const double reference = clouds.scale(beta) * simplex_spline_value(x, clouds.subset(beta));
+            ASSERT_NEAR(out.values[b], reference, 1e-12 * std::max(1.0, std::abs(reference))) << x.transpose();
+          }
+        }
+      }
+    }
+  }
+}
+
 // Collapsed clouds (every sub-knot on its vertex) make the DMS basis the Bernstein basis of the
 // tetrahedron, n!/β! λ^β (repeated knots: the coplanar subsets contribute 0). It sums to 1 on the
 // half-open tetrahedron, faces, edges and vertices included, and to 0 outside.
@@ -265,6 +297,11 @@ TEST(DmsTetrahedronBasis, PlansCompiledBeforehandGiveTheSameBasis) {
   EXPECT_THROW(cubic.evaluate(Vector3d::Zero(), plan, 0, from_plan), InvalidInput);
   EXPECT_THROW(basis.evaluate(Vector3d::Zero(), DmsTetrahedronPlan(), 0, from_plan), InvalidInput);
   EXPECT_THROW(DmsTetrahedronPlan(6, clouds.pointers()), InvalidInput);
+  Clouds broken = clouds;
+  broken.knots[2][1].x() = std::nan("");
+  EXPECT_THROW(DmsTetrahedronPlan(2, broken.pointers()), InvalidInput);
+  EXPECT_THROW(basis.evaluate(Vector3d(0.1, 0.1, 0.1), broken.pointers(), 0, from_plan), InvalidInput);
+  EXPECT_THROW(basis.evaluate(Vector3d(std::nan(""), 0, 0), plan, 0, from_plan), InvalidInput);
 }
 
 }  // namespace

@@ -34,15 +34,15 @@ class DmsRecurrenceState;
 
 /// The point-independent part of the recurrences of one tetrahedron's basis functions: the knot
 /// subsets the V_β reach, the four knots W of each and their barycentric frames (eqs. 1-2), in an
-/// order where subsets come before the sets that use them. About 15 KiB for degree 2 and 49 KiB
+/// order where subsets come before the sets that use them. About 12 KiB for degree 2 and 42 KiB
 /// for degree 3 (memory_bytes()). Build one per domain tetrahedron, and again after its knots move,
-/// to evaluate scattered points without recompiling: compiling costs about seven evaluations
+/// to evaluate scattered points without recompiling: compiling costs about 13 evaluations
 /// (DmsTetrahedronBasis also keeps the last few it compiled from clouds).
 class DmsTetrahedronPlan {
  public:
   DmsTetrahedronPlan();
   /// clouds as for DmsTetrahedronBasis::evaluate. \throw InvalidInput for a degree outside
-  /// 0..kMaxSimplexSplineDegree.
+  /// 0..kMaxSimplexSplineDegree or a non-finite knot.
   DmsTetrahedronPlan(int degree, const std::array<const Eigen::Vector3d*, 4>& clouds);
   ~DmsTetrahedronPlan();
   DmsTetrahedronPlan(DmsTetrahedronPlan&&) noexcept;
@@ -87,7 +87,7 @@ class DmsTetrahedronBasis {
 
   /// clouds[c] points at the n+1 knots t_{c,0..n} of vertex c (c = 0..3 for p, q, r, s); t_{c,0}
   /// is the vertex. Points outside the bounding box of the knots get zeros at once.
-  /// \throw InvalidInput for order outside 0..2.
+  /// \throw InvalidInput for order outside 0..2 or a non-finite point or knot.
   void evaluate(const Eigen::Vector3d& x, const std::array<const Eigen::Vector3d*, 4>& clouds, int order,
                 DmsBasisValues& out);
   /// The same from a plan compiled beforehand. \throw InvalidInput for an empty plan, a plan of
@@ -95,7 +95,8 @@ class DmsTetrahedronBasis {
   void evaluate(const Eigen::Vector3d& x, const DmsTetrahedronPlan& plan, int order, DmsBasisValues& out);
 
   /// ∫_a^b N_β^I(origin + t·direction) dt for every β (same order), memoised the same way
-  /// (eq. 16 with boundary terms, simplex_spline_line_integral). \throw InvalidInput for a > b.
+  /// (eq. 16 with boundary terms, simplex_spline_line_integral). \throw InvalidInput for a > b
+  /// (or NaN), a non-finite origin, direction or knot.
   void line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a, double b,
                       const std::array<const Eigen::Vector3d*, 4>& clouds, std::vector<double>& out);
   /// The same from a plan compiled beforehand. \throw InvalidInput for a > b, an empty plan or a

@@ -38,7 +38,8 @@ bool in_half_open_triangle(const Eigen::Vector2d& x, const Eigen::Vector2d& a, c
 /// M(x | knots) by eq. 1 without memoisation: the reference, and the benchmark's baseline. Each
 /// step uses the four knots W whose half-open tetrahedron contains x, the one of largest |det|
 /// among those (the largest |det| overall when none contains x).
-/// \throw InvalidInput for fewer than 4 or more than kMaxSimplexSplineDegree + 4 knots.
+/// \throw InvalidInput for fewer than 4 or more than kMaxSimplexSplineDegree + 4 knots, or a
+/// non-finite point or knot (as every function below).
 double simplex_spline_value(const Eigen::Vector3d& x, std::span<const Eigen::Vector3d> knots);
 
 /// M, its gradient and its Hessian at one point.
