@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <random>
+#include <Eigen/Dense>
 
 #include <benchmark/benchmark.h>
 

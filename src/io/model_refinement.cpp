@@ -89,6 +89,9 @@ std::vector<ModelObject> bezier_objects_as(const ModelObject& object, const std:
 }  // namespace
 
 ModelObject refine_object(const ModelObject& object, const std::vector<RefinementStep>& steps) {
+  // Nothing to refine: every object, swept solids and simplex spline volumes too, passes as it is
+  // (a plain change of format).
+  if (steps.empty()) return object;
   return visit_spline(object, "conversion", "type",
                       [&](const auto& s) { return refine_as<std::decay_t<decltype(s)>::num_parameters>(object, steps); });
 }

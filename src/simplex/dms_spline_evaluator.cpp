@@ -147,6 +147,17 @@ void DmsSplineEvaluator::for_each_basis_function(const Eigen::Vector3d& x, const
   }
 }
 
+bool DmsSplineEvaluator::leaves_domain(const Eigen::Vector3d& x, int located) const {
+  const TetrahedralMesh& domain = volume_->domain();
+  const auto corner = [&](int t, int c) -> const Eigen::Vector3d& {
+    return domain.points[static_cast<std::size_t>(domain.tetrahedra[static_cast<std::size_t>(t)][static_cast<std::size_t>(c)])];
+  };
+  if (in_half_open_tetrahedron(x, corner(located, 0), corner(located, 1), corner(located, 2), corner(located, 3))) return false;
+  for (const int t : index_->tetrahedra.query(x))
+    if (in_half_open_tetrahedron(x, corner(t, 0), corner(t, 1), corner(t, 2), corner(t, 3))) return false;
+  return true;
+}
+
 void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSplinePoint& out) {
   if (order < 0 || order > 1) throw InvalidInput("expected derivative order 0 or 1, got " + std::to_string(order));
   const DmsSplineVolume& v = *volume_;
@@ -162,19 +173,34 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
     return;
   }
   const TetrahedralMesh& domain = v.domain();
-  support_candidates(x, scratch_->candidates);
-  for (const int t : scratch_->candidates) {
-    const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
-    const std::array<const Eigen::Vector3d*, 4> clouds{v.knots().cloud(tet[0]), v.knots().cloud(tet[1]), v.knots().cloud(tet[2]),
-                                                       v.knots().cloud(tet[3])};
-    scratch_->basis.evaluate(x, clouds, order, scratch_->values);
-    for (int b = 0; b < v.basis_per_tetrahedron(); ++b) {
-      const double value = scratch_->values.values[static_cast<std::size_t>(b)];
-      const bool has_gradient = order >= 1 && !scratch_->values.gradients[static_cast<std::size_t>(b)].isZero(0.0);
-      if (value == 0.0 && !has_gradient) continue;
-      const auto c = control.row(v.control_row(t, b));
-      out.value += value * c.transpose();
-      if (has_gradient) out.gradient += c.transpose() * scratch_->values.gradients[static_cast<std::size_t>(b)].transpose();
+  // Values are continuous (n >= 1), but derivatives may jump across knot planes, and the half-open
+  // rule takes them from the side of the perturbation x + ε(1, ε, ε²). On ∂Ω that side may lie
+  // outside Ω, where the basis no longer sums to 1; there the derivatives come from a point
+  // 1e-9 of the tetrahedron's size inside, on the domain's side of every nearby knot plane.
+  Eigen::Vector3d derivative_point = x;
+  if (order >= 1 && leaves_domain(x, out.tetrahedron)) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 4; ++c)
+      centroid += domain.points[static_cast<std::size_t>(domain.tetrahedra[static_cast<std::size_t>(out.tetrahedron)][static_cast<std::size_t>(c)])];
+    derivative_point = x + 1e-9 * (centroid / 4 - x);
+  }
+  for (int pass = 0; pass < (derivative_point == x ? 1 : 2); ++pass) {
+    const Eigen::Vector3d& at = pass == 0 ? x : derivative_point;
+    const int pass_order = derivative_point == x ? order : (pass == 0 ? 0 : 1);
+    support_candidates(at, scratch_->candidates);
+    for (const int t : scratch_->candidates) {
+      const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
+      const std::array<const Eigen::Vector3d*, 4> clouds{v.knots().cloud(tet[0]), v.knots().cloud(tet[1]), v.knots().cloud(tet[2]),
+                                                         v.knots().cloud(tet[3])};
+      scratch_->basis.evaluate(at, clouds, pass_order, scratch_->values);
+      for (int b = 0; b < v.basis_per_tetrahedron(); ++b) {
+        const double value = pass == 0 ? scratch_->values.values[static_cast<std::size_t>(b)] : 0.0;
+        const bool has_gradient = pass_order >= 1 && !scratch_->values.gradients[static_cast<std::size_t>(b)].isZero(0.0);
+        if (value == 0.0 && !has_gradient) continue;
+        const auto c = control.row(v.control_row(t, b));
+        if (value != 0.0) out.value += value * c.transpose();
+        if (has_gradient) out.gradient += c.transpose() * scratch_->values.gradients[static_cast<std::size_t>(b)].transpose();
+      }
     }
   }
 }

@@ -63,7 +63,7 @@ TEST_F(SimplexSplineCli, MakesInspectsEvaluatesConvertsAndXrays) {
   EXPECT_NEAR(j["points"][0][0].get<double>(), 0.3, 1e-12);  // the identity geometry
   EXPECT_NEAR(j["points"][0][3].get<double>(), expected.value[3], 1e-15);
 
-  r = run("convert " + path("s.json") + " " + path("s.vtu"));
+  r = run("convert " + path("s.json") + " -o " + path("s.vtu"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(path("s.vtu")));
 

@@ -42,7 +42,7 @@ TEST(SimplexIsosurface, SphereOfAQuadraticAttributeIsExactClosedAndOriented) {
   EXPECT_TRUE(edges.closed_and_oriented()) << "boundary edges " << edges.boundary_edges;
   // Oriented toward larger values: outward, so the enclosed volume is positive and close to the ball's.
   EXPECT_NEAR(enclosed_volume(s.mesh), 4.0 / 3.0 * M_PI * 0.027, 0.08 * 0.113);
-  EXPECT_LT(s.largest_residual, 1e-12);
+  EXPECT_LT(s.largest_residual, 1e-11);
 }
 
 TEST(SimplexIsosurface, LinearAttributeGivesAPlaneAcrossTetrahedraOfEveryDegree) {
@@ -60,7 +60,7 @@ TEST(SimplexIsosurface, LinearAttributeGivesAPlaneAcrossTetrahedraOfEveryDegree)
     const SimplexIsosurface s = simplex_isosurface(v, options);
     ASSERT_GT(s.mesh.num_triangles(), 10u);
     for (std::size_t i = 0; i < s.mesh.num_vertices(); ++i) {
-      EXPECT_NEAR(a.dot(s.mesh.positions[i]), 0.9, 1e-12);
+      EXPECT_NEAR(a.dot(s.mesh.positions[i]), 0.9, 1e-11);
       EXPECT_NEAR(s.normals[i].dot(a.normalized()), 1.0, 1e-12);
     }
     // An open surface whose only border is on ∂Ω: no cracks inside.

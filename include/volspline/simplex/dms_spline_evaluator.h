@@ -40,7 +40,9 @@ class DmsSplineEvaluator {
   /// The tetrahedron of Ω that holds x (closed: a point on a face belongs to both, the lower index
   /// is returned), or -1 outside Ω. Exact orientation predicates.
   int locate(const Eigen::Vector3d& x) const;
-  /// Value (order 0) and gradient (order 1) at x. \throw InvalidInput for another order.
+  /// Value (order 0) and gradient (order 1) at x. Derivatives are one-sided where they jump (on
+  /// knot planes of degree-1 splines, or planes holding four knots): from the side of the
+  /// half-open rule, or from inside Ω on ∂Ω. \throw InvalidInput for another order.
   void evaluate(const Eigen::Vector3d& x, int order, DmsSplinePoint& out);
   DmsSplinePoint evaluate(const Eigen::Vector3d& x, int order = 0);
   /// The tetrahedra whose supports' enclosing planes hold x (a superset of those with a basis
@@ -53,6 +55,9 @@ class DmsSplineEvaluator {
  private:
   struct Index;
   struct Scratch;
+  /// x (in the closed tetrahedron `located`) is in no half-open domain tetrahedron: the
+  /// half-open rule's perturbation of x leaves Ω.
+  bool leaves_domain(const Eigen::Vector3d& x, int located) const;
   const DmsSplineVolume* volume_;
   std::shared_ptr<const Index> index_;
   std::unique_ptr<Scratch> scratch_;
