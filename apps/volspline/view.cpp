@@ -16,6 +16,8 @@
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_formats.h"
 #include "volspline/pipeline/solid_view_picture.h"
+#include "volspline/extract/simplex_isosurface.h"
+#include "volspline/io/atomic_file.h"
 #include "volspline/render/color_bar.h"
 
 namespace volspline::cli {
@@ -106,11 +108,60 @@ SolidViewPictureRequest picture_request_from(const ViewArguments& a) {
   return request;
 }
 
+// A simplex spline volume: the isosurfaces ATTRIBUTE:VALUE of its attributes (Hua–He–Qin §6.2),
+// each its own colour of the attribute-isosurface part, shaded with the analytic normals' mesh.
+void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std::ostream& out) {
+  if (a.iso_attribute.empty())
+    throw InvalidInput("a simplex_spline_volume is shown by its isosurfaces: give --iso-attribute NAME:VALUE (or use `volspline xray`)",
+                       "--iso-attribute");
+  TriangleMesh mesh;
+  std::string summary;
+  for (const std::string& text : a.iso_attribute) {
+    const auto colon = text.rfind(':');
+    if (colon == std::string::npos || colon == 0) throw InvalidInput("expected NAME:VALUE, got '" + text + "'", "--iso-attribute");
+    SimplexIsosurfaceOptions options;
+    options.attribute = text.substr(0, colon);
+    options.value = parse_numbers(text.substr(colon + 1), 1, "--iso-attribute")[0];
+    const SimplexIsosurface surface = [&] {
+      try {
+        return simplex_isosurface(volume, options);
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(e.message(), "--iso-attribute " + text);
+      }
+    }();
+    mesh.append(surface.mesh);
+    summary += "; " + text + ": " + std::to_string(surface.mesh.num_triangles()) + " triangles (k = " + std::to_string(surface.subdivisions) + ")";
+  }
+  RenderOptions render = render_options_from(a);
+  const std::string png = png_bytes(render_mesh(mesh, render));
+  const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
+  if (!a.mesh.empty()) {
+    AtomicFile mesh_file(a.mesh);
+    MeshWriteOptions mesh_options;
+    mesh_options.ascii = a.ascii;
+    mesh_file.stream() << mesh_bytes(mesh, mesh_format, mesh_options);
+    AtomicFile picture_file(a.image);
+    picture_file.stream() << png;
+    mesh_file.commit();
+    picture_file.commit();
+  } else {
+    write_file_atomically(a.image, png);
+  }
+  out << "wrote " << a.image << ": " << mesh.num_triangles() << " triangles" << summary << "\n";
+  if (!a.mesh.empty()) out << "wrote " << a.mesh << "\n";
+}
+
 }  // namespace
 
 void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
   if (std::filesystem::path(a.image).extension() != ".png")
     throw InvalidInput("expected a picture file name ending in .png, got '" + a.image + "'", "--output");
+  if (!a.iso_attribute.empty() || std::filesystem::path(a.model).extension() == ".json") {
+    const Model model = read_model_file(a.model);
+    for (const ModelObject& object : model.objects)
+      if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) return run_simplex_view(a, *volume, out);
+    if (!a.iso_attribute.empty()) throw InvalidInput(a.model + " has no simplex_spline_volume object", "--iso-attribute");
+  }
   const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
   if (mesh_format == MeshFormat::Stl && !a.color.empty())
     throw InvalidInput("STL cannot carry the colouring; use .ply or .glb", "--mesh");
@@ -158,6 +209,7 @@ std::string view_command_line(const ViewArguments& a) {
   for (const auto& s : a.planes) option("--plane", s);
   option("--core", a.core);
   for (const auto& s : a.paddlewheels) option("--paddlewheel", s);
+  for (const auto& s : a.iso_attribute) option("--iso-attribute", s);
   if (a.faces) c += " --faces";
   if (a.cutaway) c += " --cutaway";
   option("--color", a.color);
@@ -192,6 +244,7 @@ void add_view_command(CLI::App& app) {
                 "showing those slices in place");
   cmd->add_option("--color", a->color, "colour by a field: jacobian, u, v, w or the name of an attribute");
   cmd->add_option("--range", a->range, "MIN,MAX of the colour map (default: the field's range; a Jacobian of both signs is centred on 0)");
+  cmd->add_option("--iso-attribute", a->iso_attribute, "a simplex_spline_volume's isosurface NAME:VALUE of an attribute (repeatable)");
   cmd->add_option("--mesh", a->mesh, "also write the shown surfaces: .ply (with the field as a vertex property), .obj, .glb (field colours)");
   cmd->add_option("--resolution", a->resolution, "segments per parameter direction, plus every knot (default 32)")->check(CLI::Range(1, 512));
   cmd->add_option("--camera", a->camera, "view direction DX,DY,DZ, optionally followed by an up vector UX,UY,UZ");

@@ -14,6 +14,8 @@ namespace volspline::cli {
 struct ViewArguments {
   std::string model, image, mesh, color, range, camera, size = "800,600", through, core;
   std::vector<std::string> iso, slices, planes, paddlewheels;
+  /// Isosurfaces ATTRIBUTE:VALUE of a simplex spline volume (repeatable).
+  std::vector<std::string> iso_attribute;
   int resolution = 32;
   bool faces = false, cutaway = false, edges = false, transparent = false, ascii = false;
 };

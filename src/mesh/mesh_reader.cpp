@@ -756,7 +756,72 @@ TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format, const std::st
   throw InvalidInput("unknown mesh format", source);
 }
 
+TriangleMesh parse_off(std::string_view bytes, const std::string& source) {
+  // Tokens with their line numbers; '#' starts a comment.
+  std::vector<std::pair<std::string_view, int>> tokens;
+  int line = 1;
+  for (std::size_t i = 0; i < bytes.size();) {
+    const char c = bytes[i];
+    if (c == '\n') {
+      ++line, ++i;
+    } else if (c == '#') {
+      while (i < bytes.size() && bytes[i] != '\n') ++i;
+    } else if (c == ' ' || c == '\t' || c == '\r') {
+      ++i;
+    } else {
+      const std::size_t start = i;
+      while (i < bytes.size() && bytes[i] != ' ' && bytes[i] != '\t' && bytes[i] != '\r' && bytes[i] != '\n' && bytes[i] != '#') ++i;
+      tokens.emplace_back(bytes.substr(start, i - start), line);
+    }
+  }
+  std::size_t at = 0;
+  auto where = [&](std::size_t t) { return source + ": line " + std::to_string(t < tokens.size() ? tokens[t].second : line); };
+  auto number = [&](const char* what) {
+    if (at >= tokens.size()) throw InvalidInput(std::string("expected ") + what + ", got the end of the file", where(at));
+    const std::string text(tokens[at].first);
+    char* end = nullptr;
+    const double x = std::strtod(text.c_str(), &end);
+    if (end != text.c_str() + text.size() || !std::isfinite(x))
+      throw InvalidInput(std::string("expected ") + what + ", got '" + text.substr(0, 40) + "'", where(at));
+    ++at;
+    return x;
+  };
+  auto count = [&](const char* what, double limit) {
+    const std::size_t t = at;
+    const double x = number(what);
+    if (x < 0 || x != std::floor(x) || x > limit)
+      throw InvalidInput(std::string("expected ") + what + " (an integer from 0 to " + std::to_string(static_cast<long long>(limit)) + ")", where(t));
+    return static_cast<long long>(x);
+  };
+  if (tokens.empty() || tokens[0].first != "OFF") throw InvalidInput("expected the header OFF", where(0));
+  at = 1;
+  // Every vertex takes at least 6 bytes and every face 8: counts beyond that are not backed by
+  // the file, so nothing is reserved for them.
+  const long long vertices = count("the vertex count", static_cast<double>(bytes.size() / 6));
+  const long long faces = count("the face count", static_cast<double>(bytes.size() / 8));
+  count("the edge count", 1e18);
+  TriangleMesh mesh;
+  for (long long v = 0; v < vertices; ++v) {
+    const double x = number("a vertex coordinate"), y = number("a vertex coordinate"), z = number("a vertex coordinate");
+    mesh.add_vertex(Eigen::Vector3d(x, y, z), Eigen::Vector3d::Zero());
+  }
+  for (long long f = 0; f < faces; ++f) {
+    const std::size_t face_token = at;
+    const long long corners = count("a face's vertex count", 1e6);
+    if (corners < 3) throw InvalidInput("expected a face of 3 or more vertices, got " + std::to_string(corners), where(face_token));
+    const int face_line = tokens[face_token].second;
+    std::vector<int> index;
+    for (long long k = 0; k < corners; ++k) index.push_back(static_cast<int>(count("a vertex index", static_cast<double>(vertices - 1))));
+    // Colour values may follow on the face's line; skip them.
+    while (at < tokens.size() && tokens[at].second == face_line) ++at;
+    for (long long k = 1; k + 1 < corners; ++k)
+      mesh.add_triangle(index[0], index[static_cast<std::size_t>(k)], index[static_cast<std::size_t>(k + 1)], kUnnamedPartNumber);
+  }
+  return mesh;
+}
+
 TriangleMesh read_mesh(const std::filesystem::path& path) {
+  if (path.extension() == ".off" || path.extension() == ".OFF") return parse_off(read_file(path), path.string());
   const MeshFormat format = mesh_format_from_path(path);
   const std::string bytes = read_file(path);
   return parse_mesh(bytes, format, path.string());

@@ -63,6 +63,8 @@ struct XrayRenderer::State {
   // Geometry of every tetrahedron: the domain tetrahedron's planes, its supports' enclosure, and
   // the boxes in pixels both cover.
   std::vector<std::array<Eigen::Vector4d, 4>> domain_planes, support_planes;
+  // The compiled recurrence of each tetrahedron's basis (simplex/dms_tetrahedron_basis.h).
+  std::vector<DmsTetrahedronPlan> plans;
   std::vector<std::array<int, 4>> support_pixels;  // x0, y0, x1, y1 (inclusive), or x0 > x1 when off screen
   int tiles_x = 0, tiles_y = 0;
   std::vector<std::vector<int>> tile_domain, tile_support;
@@ -144,6 +146,12 @@ XrayRenderer::XrayRenderer(const DmsSplineVolume& volume, const XrayOptions& opt
     s.support_pixels[t] = to_pixels(knots);
     domain_pixels[t] = to_pixels(std::vector<Eigen::Vector3d>(corner.begin(), corner.end()));
   }
+  s.plans.resize(tets);
+  tbb::parallel_for(std::size_t{0}, tets, [&](std::size_t t) {
+    const std::array<int, 4>& tet = domain.tetrahedra[t];
+    s.plans[t] = DmsTetrahedronPlan(volume.degree(), {volume.knots().cloud(tet[0]), volume.knots().cloud(tet[1]),
+                                                      volume.knots().cloud(tet[2]), volume.knots().cloud(tet[3])});
+  });
   s.tile_domain.assign(static_cast<std::size_t>(s.tiles_x * s.tiles_y), {});
   s.tile_support.assign(static_cast<std::size_t>(s.tiles_x * s.tiles_y), {});
   auto bin = [&](const std::array<int, 4>& r, int id, std::vector<std::vector<int>>& tiles) {
@@ -221,7 +229,6 @@ void XrayRenderer::render() {
   };
   tbb::enumerable_thread_specific<Local> locals([&] { return Local(v.degree()); });
   const Eigen::MatrixXd& control = v.control_vectors();
-  const TetrahedralMesh& domain = v.domain();
   tbb::parallel_for(0, s.tiles_x * s.tiles_y, [&](int tile) {
     Local& local = locals.local();
     const int tx = tile % s.tiles_x, ty = tile / s.tiles_x;
@@ -236,13 +243,11 @@ void XrayRenderer::render() {
         for (const int t : s.tile_support[static_cast<std::size_t>(tile)]) {
           double s0 = s.chords[static_cast<std::size_t>(c0)][0], s1 = s.chords[static_cast<std::size_t>(c1 - 1)][1];
           if (!clip_ray(s.support_planes[static_cast<std::size_t>(t)], o, d, s0, s1)) continue;
-          const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
-          const std::array<const Eigen::Vector3d*, 4> clouds{v.knots().cloud(tet[0]), v.knots().cloud(tet[1]), v.knots().cloud(tet[2]),
-                                                             v.knots().cloud(tet[3])};
+          const DmsTetrahedronPlan& plan = s.plans[static_cast<std::size_t>(t)];
           for (int c = c0; c < c1; ++c) {
             const double a = std::max(s0, s.chords[static_cast<std::size_t>(c)][0]), b = std::min(s1, s.chords[static_cast<std::size_t>(c)][1]);
             if (!(a < b)) continue;
-            local.basis.line_integrals(o, d, a, b, clouds, local.integrals);
+            local.basis.line_integrals(o, d, a, b, plan, local.integrals);
             ++local.count;
             for (int beta = 0; beta < v.basis_per_tetrahedron(); ++beta) {
               const double g = s.column < 0 ? 1.0 : control(v.control_row(t, beta), s.column);
@@ -267,16 +272,13 @@ int XrayRenderer::update_coefficient(int row, double delta) {
     throw InvalidInput("expected a control row from 0 to " + std::to_string(v.control_vector_count() - 1) + ", got " + std::to_string(row));
   if (state_->column < 0) return 0;  // the constant 1 has no coefficients
   const State& s = *state_;
-  const TetrahedralMesh& domain = v.domain();
   DmsTetrahedronBasis basis(v.degree());
   std::vector<double> integrals;
   int touched = 0;
   std::vector<char> seen(static_cast<std::size_t>(options_.width) * static_cast<std::size_t>(options_.height), 0);
   for (const auto& [t, beta] : v.control_row_uses()[static_cast<std::size_t>(row)]) {
     const std::array<int, 4>& r = s.support_pixels[static_cast<std::size_t>(t)];
-    const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
-    const std::array<const Eigen::Vector3d*, 4> clouds{v.knots().cloud(tet[0]), v.knots().cloud(tet[1]), v.knots().cloud(tet[2]),
-                                                       v.knots().cloud(tet[3])};
+    const DmsTetrahedronPlan& plan = s.plans[static_cast<std::size_t>(t)];
     for (int y = r[1]; y <= r[3]; ++y)
       for (int x = r[0]; x <= r[2]; ++x) {
         const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(options_.width) + static_cast<std::size_t>(x);
@@ -290,7 +292,7 @@ int XrayRenderer::update_coefficient(int row, double delta) {
         for (int c = c0; c < c1; ++c) {
           const double a = std::max(s0, s.chords[static_cast<std::size_t>(c)][0]), b = std::min(s1, s.chords[static_cast<std::size_t>(c)][1]);
           if (!(a < b)) continue;
-          basis.line_integrals(o, d, a, b, clouds, integrals);
+          basis.line_integrals(o, d, a, b, plan, integrals);
           integral += integrals[static_cast<std::size_t>(beta)];
         }
         picture_.line_integrals[p] += delta * integral;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <tbb/parallel_for.h>
 
 #include "box_grid.h"
 #include "volspline/core/error.h"
@@ -31,7 +32,13 @@ bool in_closed_tetrahedron(const Eigen::Vector3d& x, const std::array<Eigen::Vec
 // clouds (so they enclose every support hull(V_β^I)), and the grids over the supports' and the
 // domain tetrahedra's bounding boxes.
 struct DmsSplineEvaluator::Index {
+  // The compiled recurrence of every tetrahedron (its basis functions' knot subsets and
+  // barycentric frames do not depend on the point).
+  std::vector<DmsTetrahedronPlan> plans;
   std::vector<std::array<Eigen::Vector4d, 4>> support_planes;  // n·x <= h as (n, h)
+  // The domain tetrahedra's face planes, lowered by a margin that covers the rounding of n·x, so
+  // that n·x < h proves x inside.
+  std::vector<std::array<Eigen::Vector4d, 4>> domain_planes;
   BoxGrid supports;
   BoxGrid tetrahedra;
 };
@@ -80,9 +87,23 @@ DmsSplineEvaluator::DmsSplineEvaluator(const DmsSplineVolume& volume)
       planes[static_cast<std::size_t>(f)] << normal, h + 16 * std::numeric_limits<double>::epsilon() * scale;
     }
     index->support_planes.push_back(planes);
+    std::array<Eigen::Vector4d, 4> inner;
+    for (int f = 0; f < 4; ++f) {
+      const Eigen::Vector3d normal = planes[static_cast<std::size_t>(f)].head<3>();
+      const Eigen::Vector3d& a = corner[static_cast<std::size_t>((f + 1) % 4)];
+      const double scale = tet_box.max().cwiseAbs().maxCoeff() + tet_box.min().cwiseAbs().maxCoeff() + tet_box.diagonal().norm();
+      inner[static_cast<std::size_t>(f)] << normal, normal.dot(a) - 1e-12 * scale;
+    }
+    index->domain_planes.push_back(inner);
     support_boxes.push_back(support_box);
     tetrahedron_boxes.push_back(tet_box);
   }
+  index->plans.resize(domain.tetrahedra.size());
+  tbb::parallel_for(std::size_t{0}, domain.tetrahedra.size(), [&](std::size_t t) {
+    const std::array<int, 4>& tet = domain.tetrahedra[t];
+    index->plans[t] = DmsTetrahedronPlan(volume.degree(), {volume.knots().cloud(tet[0]), volume.knots().cloud(tet[1]),
+                                                           volume.knots().cloud(tet[2]), volume.knots().cloud(tet[3])});
+  });
   index->supports = BoxGrid(support_boxes);
   index->tetrahedra = BoxGrid(tetrahedron_boxes);
   index_ = std::move(index);
@@ -95,6 +116,14 @@ DmsSplineEvaluator::DmsSplineEvaluator(const DmsSplineEvaluator& other)
 
 int DmsSplineEvaluator::locate(const Eigen::Vector3d& x) const {
   const TetrahedralMesh& domain = volume_->domain();
+  // A point inside a tetrahedron by a clear margin lies in no other (the mesh is proper): the
+  // floating-point face planes decide it; only points near a face need the exact predicates.
+  for (const int t : index_->tetrahedra.query(x)) {
+    const std::array<Eigen::Vector4d, 4>& planes = index_->domain_planes[static_cast<std::size_t>(t)];
+    bool clearly_inside = true;
+    for (const Eigen::Vector4d& p : planes) clearly_inside = clearly_inside && p.head<3>().dot(x) < p[3];
+    if (clearly_inside) return t;
+  }
   int found = -1;
   for (const int t : index_->tetrahedra.query(x)) {
     if (found >= 0 && t > found) continue;
@@ -139,10 +168,7 @@ void DmsSplineEvaluator::for_each_basis_function(const Eigen::Vector3d& x, const
   }
   support_candidates(x, scratch_->candidates);
   for (const int t : scratch_->candidates) {
-    const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
-    const std::array<const Eigen::Vector3d*, 4> clouds{v.knots().cloud(tet[0]), v.knots().cloud(tet[1]), v.knots().cloud(tet[2]),
-                                                       v.knots().cloud(tet[3])};
-    scratch_->basis.evaluate(x, clouds, 0, scratch_->values);
+    scratch_->basis.evaluate(x, index_->plans[static_cast<std::size_t>(t)], 0, scratch_->values);
     for (int b = 0; b < v.basis_per_tetrahedron(); ++b) f(v.control_row(t, b), scratch_->values.values[static_cast<std::size_t>(b)]);
   }
 }
@@ -178,7 +204,9 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
   // outside Ω, where the basis no longer sums to 1; there the derivatives come from a point
   // 1e-9 of the tetrahedron's size inside, on the domain's side of every nearby knot plane.
   Eigen::Vector3d derivative_point = x;
-  if (order >= 1 && leaves_domain(x, out.tetrahedron)) {
+  bool near_face = false;
+  for (const Eigen::Vector4d& p : index_->domain_planes[static_cast<std::size_t>(out.tetrahedron)]) near_face = near_face || !(p.head<3>().dot(x) < p[3]);
+  if (order >= 1 && near_face && leaves_domain(x, out.tetrahedron)) {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (int c = 0; c < 4; ++c)
       centroid += domain.points[static_cast<std::size_t>(domain.tetrahedra[static_cast<std::size_t>(out.tetrahedron)][static_cast<std::size_t>(c)])];
@@ -189,10 +217,7 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
     const int pass_order = derivative_point == x ? order : (pass == 0 ? 0 : 1);
     support_candidates(at, scratch_->candidates);
     for (const int t : scratch_->candidates) {
-      const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
-      const std::array<const Eigen::Vector3d*, 4> clouds{v.knots().cloud(tet[0]), v.knots().cloud(tet[1]), v.knots().cloud(tet[2]),
-                                                         v.knots().cloud(tet[3])};
-      scratch_->basis.evaluate(at, clouds, pass_order, scratch_->values);
+      scratch_->basis.evaluate(at, index_->plans[static_cast<std::size_t>(t)], pass_order, scratch_->values);
       for (int b = 0; b < v.basis_per_tetrahedron(); ++b) {
         const double value = pass == 0 ? scratch_->values.values[static_cast<std::size_t>(b)] : 0.0;
         const bool has_gradient = pass_order >= 1 && !scratch_->values.gradients[static_cast<std::size_t>(b)].isZero(0.0);

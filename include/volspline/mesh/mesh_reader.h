@@ -43,10 +43,18 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& source);
 /// \throw InvalidInput naming `source` and where if the bytes are not a valid STL mesh.
 TriangleMesh parse_stl(std::string_view bytes, const std::string& source);
 
+/// OFF (Geomview; what CGAL's data files and Debian's mesh packages ship): "OFF", the vertex,
+/// face and edge counts, the vertices, then faces "k i_0 .. i_{k-1}" (fans; colours after the
+/// indices ignored); '#' comments. Read only (volspline writes PLY, OBJ, STL and glTF); parts are
+/// kUnnamedPartNumber, parameters (0, 0, 0).
+/// \throw InvalidInput naming `source` and the line if the text is not a valid OFF mesh.
+TriangleMesh parse_off(std::string_view bytes, const std::string& source);
+
 /// The parser of `format`. \throw InvalidInput as that parser, or for a format without one.
 TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format, const std::string& source);
 
-/// Reads the mesh in `path`, in the format its extension names (mesh_format_from_path); errors
+/// Reads the mesh in `path`, in the format its extension names (mesh_format_from_path, or .off
+/// for parse_off); errors
 /// name the path as given.
 /// \throw IoError if the file cannot be read, InvalidInput if it is not a valid mesh or the
 /// extension is unknown.
