@@ -4,6 +4,7 @@
 // adaptive quadrature at the same accuracy; the incremental update of eq. 12.
 //
 // Run: build/bin/simplex_volume_bench (docs/performance.md records the figures).
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -61,6 +62,26 @@ void BM_EvaluateMemoised(benchmark::State& state) {
   state.counters["points_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_EvaluateMemoised)->Arg(2)->Arg(3);
+
+// The same points in the order of the tetrahedra that hold them, as grids, slices and rays visit
+// a domain: each tetrahedron's plan is evaluated while it is in the cache.
+void BM_EvaluateMemoisedCoherent(benchmark::State& state) {
+  const DmsSplineVolume& v = volume(static_cast<int>(state.range(0)));
+  DmsSplineEvaluator evaluator(v);
+  auto points = random_points(4096);
+  std::vector<std::pair<int, Eigen::Vector3d>> located;
+  for (const auto& p : points) located.emplace_back(evaluator.locate(p), p);
+  std::sort(located.begin(), located.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = located[i].second;
+  DmsSplinePoint out;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    evaluator.evaluate(points[i++ % points.size()], 1, out);
+    benchmark::DoNotOptimize(out.value.data());
+  }
+  state.counters["points_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_EvaluateMemoisedCoherent)->Arg(2)->Arg(3);
 
 // The baseline: the same candidate tetrahedra, but every basis function's value and its three
 // derivatives by the plain recurrence (eq. 1 and eq. 2), nothing shared.

@@ -17,6 +17,9 @@
 #include "volspline/io/model_formats.h"
 #include "volspline/pipeline/solid_view_picture.h"
 #include "volspline/extract/simplex_isosurface.h"
+#include "volspline/extract/simplex_slices.h"
+
+#include <Eigen/Geometry>
 #include "volspline/io/atomic_file.h"
 #include "volspline/render/color_bar.h"
 
@@ -111,11 +114,20 @@ SolidViewPictureRequest picture_request_from(const ViewArguments& a) {
 // A simplex spline volume: the isosurfaces ATTRIBUTE:VALUE of its attributes (Hua–He–Qin §6.2),
 // each its own colour of the attribute-isosurface part, shaded with the analytic normals' mesh.
 void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std::ostream& out) {
-  if (a.iso_attribute.empty())
-    throw InvalidInput("a simplex_spline_volume is shown by its isosurfaces: give --iso-attribute NAME:VALUE (or use `volspline xray`)",
+  if (a.iso_attribute.empty() && a.slices.empty() && a.planes.empty())
+    throw InvalidInput("a simplex_spline_volume is shown by isosurfaces (--iso-attribute NAME:VALUE) and slices (--slices AXIS:N, "
+                       "--plane NX,NY,NZ,D), or use `volspline xray`",
                        "--iso-attribute");
+  for (const char* option : {"--iso", "--through", "--core", "--paddlewheel", "--faces", "--cutaway"}) {
+    const bool given = (std::string(option) == "--iso" && !a.iso.empty()) || (std::string(option) == "--through" && !a.through.empty()) ||
+                       (std::string(option) == "--core" && !a.core.empty()) || (std::string(option) == "--paddlewheel" && !a.paddlewheels.empty()) ||
+                       (std::string(option) == "--faces" && a.faces) || (std::string(option) == "--cutaway" && a.cutaway);
+    if (given) throw InvalidInput(std::string(option) + " works on tensor-product volumes; a simplex_spline_volume takes --iso-attribute, --slices and --plane", option);
+  }
   TriangleMesh mesh;
+  std::vector<double> scalars;
   std::string summary;
+  const std::string color = a.color.empty() && !volume.attribute_names().empty() ? volume.attribute_names().front() : a.color;
   for (const std::string& text : a.iso_attribute) {
     const auto colon = text.rfind(':');
     if (colon == std::string::npos || colon == 0) throw InvalidInput("expected NAME:VALUE, got '" + text + "'", "--iso-attribute");
@@ -130,9 +142,49 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
       }
     }();
     mesh.append(surface.mesh);
+    scalars.insert(scalars.end(), surface.mesh.num_vertices(), options.value);
     summary += "; " + text + ": " + std::to_string(surface.mesh.num_triangles()) + " triangles (k = " + std::to_string(surface.subdivisions) + ")";
   }
+  std::vector<Plane> planes;
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : volume.domain().points) box.extend(p);
+  for (const auto& text : a.slices) {
+    const auto [axis, count] = parse_named_count(text, "xyz", "--slices");
+    for (int i = 0; i < count; ++i) {
+      Plane plane{Eigen::Vector3d::Unit(axis), box.min()[axis] + (box.max()[axis] - box.min()[axis]) * (i + 1) / (count + 1)};
+      planes.push_back(plane);
+    }
+  }
+  for (const auto& text : a.planes) {
+    const auto p = parse_numbers(text, 4, "--plane");
+    planes.push_back(Plane{Eigen::Vector3d(p[0], p[1], p[2]), p[3]});
+  }
+  SimplexSliceOptions slice_options;
+  slice_options.attribute = color;
+  for (const Plane& plane : planes) {
+    const SimplexSlice slice = [&] {
+      try {
+        return simplex_plane_slice(volume, plane, slice_options);
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(e.message(), e.message().rfind("no attribute", 0) == 0 ? "--color" : "--plane");
+      }
+    }();
+    mesh.append(slice.mesh);
+    if (slice.values.empty()) scalars.insert(scalars.end(), slice.mesh.num_vertices(), 0.0);
+    else scalars.insert(scalars.end(), slice.values.begin(), slice.values.end());
+  }
+  if (!planes.empty()) summary += "; " + std::to_string(planes.size()) + " slice(s)";
   RenderOptions render = render_options_from(a);
+  const bool colored = !planes.empty() && !color.empty();
+  if (colored) {
+    render.color = ColorMode::Scalar;
+    render.vertex_scalars = scalars;
+    render.color_bar_title = color;
+    if (!a.range.empty()) {
+      const auto r = parse_numbers(a.range, 2, "--range");
+      render.scalar_min = r[0], render.scalar_max = r[1];
+    }
+  }
   const std::string png = png_bytes(render_mesh(mesh, render));
   const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
   if (!a.mesh.empty()) {
@@ -147,7 +199,12 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
   } else {
     write_file_atomically(a.image, png);
   }
-  out << "wrote " << a.image << ": " << mesh.num_triangles() << " triangles" << summary << "\n";
+  out << "wrote " << a.image << ": " << mesh.num_triangles() << " triangles" << summary;
+  if (colored) {
+    const auto [lo, hi] = scalar_range(mesh, render);
+    out << "; " << color << " in [" << color_bar_label(lo) << ", " << color_bar_label(hi) << "]";
+  }
+  out << "\n";
   if (!a.mesh.empty()) out << "wrote " << a.mesh << "\n";
 }
 
@@ -157,6 +214,7 @@ void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
   if (std::filesystem::path(a.image).extension() != ".png")
     throw InvalidInput("expected a picture file name ending in .png, got '" + a.image + "'", "--output");
   if (!a.iso_attribute.empty() || std::filesystem::path(a.model).extension() == ".json") {
+    // A simplex spline volume has no parameter box: its own view (isosurfaces and slices).
     const Model model = read_model_file(a.model);
     for (const ModelObject& object : model.objects)
       if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) return run_simplex_view(a, *volume, out);

@@ -11,98 +11,23 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "simplex_lattice.h"
 #include "volspline/core/error.h"
 #include "volspline/mesh/marching_tetrahedra.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
 
 namespace volspline {
-namespace {
-
-// A lattice point (a_0, a_1, a_2, a_3)/k of a domain tetrahedron, named by its nonzero
-// barycentric numerators and the global vertex indices they belong to (sorted), so that the same
-// point reached from two tetrahedra gets the same name.
-using LatticeKey = std::array<std::int64_t, 8>;
-
-LatticeKey lattice_key(const std::array<int, 4>& sorted_vertices, const std::array<int, 4>& numerators) {
-  LatticeKey key;
-  key.fill(-1);
-  int at = 0;
-  for (int c = 0; c < 4; ++c)
-    if (numerators[static_cast<std::size_t>(c)] > 0) {
-      key[static_cast<std::size_t>(2 * at)] = sorted_vertices[static_cast<std::size_t>(c)];
-      key[static_cast<std::size_t>(2 * at + 1)] = numerators[static_cast<std::size_t>(c)];
-      ++at;
-    }
-  return key;
-}
-
-// The edgewise subdivision of the Kuhn simplex {k >= y1 >= y2 >= y3 >= 0}: the Freudenthal
-// simplices of the unit cubes of [0, k]^3 that lie in it (k^3 of them), as lattice points y.
-std::vector<std::array<Eigen::Vector3i, 4>> edgewise_subdivision(int k) {
-  std::vector<std::array<Eigen::Vector3i, 4>> simplices;
-  std::array<int, 3> order{0, 1, 2};
-  auto in_simplex = [k](const Eigen::Vector3i& y) { return k >= y[0] && y[0] >= y[1] && y[1] >= y[2] && y[2] >= 0; };
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b)
-      for (int c = 0; c < k; ++c) {
-        order = {0, 1, 2};
-        do {
-          std::array<Eigen::Vector3i, 4> s;
-          s[0] = Eigen::Vector3i(a, b, c);
-          for (int m = 0; m < 3; ++m) s[static_cast<std::size_t>(m + 1)] = s[static_cast<std::size_t>(m)] + Eigen::Vector3i::Unit(order[static_cast<std::size_t>(m)]);
-          if (std::all_of(s.begin(), s.end(), in_simplex)) simplices.push_back(s);
-        } while (std::next_permutation(order.begin(), order.end()));
-      }
-  return simplices;
-}
-
-}  // namespace
 
 SimplexIsosurface simplex_isosurface(const DmsSplineVolume& volume, const SimplexIsosurfaceOptions& options) {
   if (volume.attribute_names().empty()) throw InvalidInput("the volume has no attributes to take an isosurface of");
   const int column = options.attribute.empty() ? 3 : volume.attribute_column(options.attribute);
   const TetrahedralMesh& domain = volume.domain();
-  int k = options.subdivisions;
-  if (k == 0) {
-    Eigen::AlignedBox3d box;
-    for (const Eigen::Vector3d& p : domain.points) box.extend(p);
-    const double target = options.target_edge > 0 ? options.target_edge : box.diagonal().norm() / 40.0;
-    double longest = 0;
-    for (const auto& t : domain.tetrahedra)
-      for (int a = 0; a < 4; ++a)
-        for (int b = a + 1; b < 4; ++b)
-          longest = std::max(longest, (domain.points[static_cast<std::size_t>(t[static_cast<std::size_t>(a)])] -
-                                       domain.points[static_cast<std::size_t>(t[static_cast<std::size_t>(b)])]).norm());
-    k = std::clamp(static_cast<int>(std::ceil(longest / target)), 1, std::max(1, options.max_subdivisions));
-  }
+  const int k = options.subdivisions > 0 ? options.subdivisions
+                                         : automatic_lattice_subdivisions(domain, options.target_edge, options.max_subdivisions);
   if (k < 1 || k > 64) throw InvalidInput("expected 1 to 64 subdivisions per tetrahedron edge, got " + std::to_string(k));
-
-  // The lattice points of every tetrahedron, named once.
-  const std::vector<std::array<Eigen::Vector3i, 4>> pieces = edgewise_subdivision(k);
-  std::map<LatticeKey, std::int64_t> ids;
-  std::vector<Eigen::Vector3d> sample_points;
-  std::vector<std::array<std::int64_t, 4>> sub_tetrahedra;
-  sub_tetrahedra.reserve(domain.tetrahedra.size() * pieces.size());
-  for (const std::array<int, 4>& tet : domain.tetrahedra) {
-    std::array<int, 4> w = tet;
-    std::sort(w.begin(), w.end());
-    const auto P = [&](int c) -> const Eigen::Vector3d& { return domain.points[static_cast<std::size_t>(w[static_cast<std::size_t>(c)])]; };
-    for (const auto& piece : pieces) {
-      std::array<std::int64_t, 4> corners;
-      for (int c = 0; c < 4; ++c) {
-        const Eigen::Vector3i& y = piece[static_cast<std::size_t>(c)];
-        const std::array<int, 4> numerators{k - y[0], y[0] - y[1], y[1] - y[2], y[2]};
-        const auto [it, added] = ids.emplace(lattice_key(w, numerators), static_cast<std::int64_t>(sample_points.size()));
-        if (added) {
-          Eigen::Vector3d x = Eigen::Vector3d::Zero();
-          for (int m = 0; m < 4; ++m) x += numerators[static_cast<std::size_t>(m)] * P(m);
-          sample_points.push_back(x / k);
-        }
-        corners[static_cast<std::size_t>(c)] = it->second;
-      }
-      sub_tetrahedra.push_back(corners);
-    }
-  }
+  const SimplexLattice lattice = simplex_lattice(domain, k);
+  const std::vector<Eigen::Vector3d>& sample_points = lattice.points;
+  const std::vector<std::array<std::int64_t, 4>>& sub_tetrahedra = lattice.tetrahedra;
 
   // The attribute at every sample.
   std::vector<double> samples(sample_points.size());

@@ -229,34 +229,47 @@ void XrayRenderer::render() {
   };
   tbb::enumerable_thread_specific<Local> locals([&] { return Local(v.degree()); });
   const Eigen::MatrixXd& control = v.control_vectors();
+  // Tetrahedron-major within a tile: each plan (kilobytes) is used for all the tile's rays while
+  // it is in the cache, instead of the tile's hundreds of plans for every ray.
   tbb::parallel_for(0, s.tiles_x * s.tiles_y, [&](int tile) {
     Local& local = locals.local();
     const int tx = tile % s.tiles_x, ty = tile / s.tiles_x;
+    struct Ray {
+      std::size_t pixel;
+      Eigen::Vector3d origin, direction;
+      int c0, c1;
+      double sum;
+    };
+    std::vector<Ray> rays;
+    rays.reserve(kTile * kTile);
     for (int y = ty * kTile; y < std::min(height, (ty + 1) * kTile); ++y)
       for (int x = tx * kTile; x < std::min(width, (tx + 1) * kTile); ++x) {
         const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
         const int c0 = s.chord_offsets[p], c1 = s.chord_offsets[p + 1];
         if (c0 == c1) continue;
-        Eigen::Vector3d o, d;
-        pixel_ray(x, y, o, d);
-        double sum = 0;
-        for (const int t : s.tile_support[static_cast<std::size_t>(tile)]) {
-          double s0 = s.chords[static_cast<std::size_t>(c0)][0], s1 = s.chords[static_cast<std::size_t>(c1 - 1)][1];
-          if (!clip_ray(s.support_planes[static_cast<std::size_t>(t)], o, d, s0, s1)) continue;
-          const DmsTetrahedronPlan& plan = s.plans[static_cast<std::size_t>(t)];
-          for (int c = c0; c < c1; ++c) {
-            const double a = std::max(s0, s.chords[static_cast<std::size_t>(c)][0]), b = std::min(s1, s.chords[static_cast<std::size_t>(c)][1]);
-            if (!(a < b)) continue;
-            local.basis.line_integrals(o, d, a, b, plan, local.integrals);
-            ++local.count;
-            for (int beta = 0; beta < v.basis_per_tetrahedron(); ++beta) {
-              const double g = s.column < 0 ? 1.0 : control(v.control_row(t, beta), s.column);
-              sum += g * local.integrals[static_cast<std::size_t>(beta)];
-            }
-          }
-        }
-        picture_.line_integrals[p] = sum;
+        Ray ray{p, {}, {}, c0, c1, 0.0};
+        pixel_ray(x, y, ray.origin, ray.direction);
+        rays.push_back(ray);
       }
+    if (rays.empty()) return;
+    std::vector<double> weights(static_cast<std::size_t>(v.basis_per_tetrahedron()));
+    for (const int t : s.tile_support[static_cast<std::size_t>(tile)]) {
+      const DmsTetrahedronPlan& plan = s.plans[static_cast<std::size_t>(t)];
+      for (int beta = 0; beta < v.basis_per_tetrahedron(); ++beta)
+        weights[static_cast<std::size_t>(beta)] = s.column < 0 ? 1.0 : control(v.control_row(t, beta), s.column);
+      for (Ray& ray : rays) {
+        double s0 = s.chords[static_cast<std::size_t>(ray.c0)][0], s1 = s.chords[static_cast<std::size_t>(ray.c1 - 1)][1];
+        if (!clip_ray(s.support_planes[static_cast<std::size_t>(t)], ray.origin, ray.direction, s0, s1)) continue;
+        for (int c = ray.c0; c < ray.c1; ++c) {
+          const double a = std::max(s0, s.chords[static_cast<std::size_t>(c)][0]), b = std::min(s1, s.chords[static_cast<std::size_t>(c)][1]);
+          if (!(a < b)) continue;
+          local.basis.line_integrals(ray.origin, ray.direction, a, b, plan, local.integrals);
+          ++local.count;
+          for (std::size_t beta = 0; beta < weights.size(); ++beta) ray.sum += weights[beta] * local.integrals[beta];
+        }
+      }
+    }
+    for (const Ray& ray : rays) picture_.line_integrals[ray.pixel] = ray.sum;
   });
   picture_.tetrahedron_integrals = 0;
   for (const Local& l : locals) picture_.tetrahedron_integrals += l.count;

@@ -9,7 +9,7 @@ BoxGrid::BoxGrid(const std::vector<Eigen::AlignedBox3d>& boxes) {
   for (const Eigen::AlignedBox3d& b : boxes) bounds_.extend(b);
   if (boxes.empty()) return;
   const Eigen::Vector3d extent = bounds_.sizes().cwiseMax(1e-300);
-  const double volume_per_cell = extent.prod() / (2.0 * static_cast<double>(boxes.size()));
+  const double volume_per_cell = extent.prod() / (16.0 * static_cast<double>(boxes.size()));
   const double side = std::cbrt(volume_per_cell);
   for (int a = 0; a < 3; ++a) {
     const double count = std::isfinite(side) && side > 0 ? std::ceil(extent[a] / side) : 1.0;

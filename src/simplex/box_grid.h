@@ -12,7 +12,7 @@ namespace volspline {
 class BoxGrid {
  public:
   BoxGrid() = default;
-  /// About two cells per box, at most 128 per axis.
+  /// About sixteen cells per box (a query then meets few boxes), at most 128 per axis.
   explicit BoxGrid(const std::vector<Eigen::AlignedBox3d>& boxes);
   /// The boxes whose cells hold x (a superset of the boxes that contain x; empty outside all).
   std::span<const int> query(const Eigen::Vector3d& x) const;

@@ -39,6 +39,9 @@ struct DmsSplineEvaluator::Index {
   // The domain tetrahedra's face planes, lowered by a margin that covers the rounding of n·x, so
   // that n·x < h proves x inside.
   std::vector<std::array<Eigen::Vector4d, 4>> domain_planes;
+  // The same planes raised by 1e-10 of the tetrahedron's size: a point computed on ∂Ω (a lattice
+  // point, an edge midpoint) may land a rounding error outside; within this margin it is inside.
+  std::vector<std::array<Eigen::Vector4d, 4>> outer_planes;
   BoxGrid supports;
   BoxGrid tetrahedra;
 };
@@ -95,8 +98,16 @@ DmsSplineEvaluator::DmsSplineEvaluator(const DmsSplineVolume& volume)
       inner[static_cast<std::size_t>(f)] << normal, normal.dot(a) - 1e-12 * scale;
     }
     index->domain_planes.push_back(inner);
+    std::array<Eigen::Vector4d, 4> outer = inner;
+    for (int f = 0; f < 4; ++f) {
+      const Eigen::Vector3d& a = corner[static_cast<std::size_t>((f + 1) % 4)];
+      outer[static_cast<std::size_t>(f)][3] = outer[static_cast<std::size_t>(f)].head<3>().dot(a) + 1e-10 * tet_box.diagonal().norm();
+    }
+    index->outer_planes.push_back(outer);
     support_boxes.push_back(support_box);
-    tetrahedron_boxes.push_back(tet_box);
+    // Widened by locate's margin, so that a point a rounding error outside ∂Ω still finds its tetrahedron.
+    const Eigen::Vector3d margin = Eigen::Vector3d::Constant(2e-10 * tet_box.diagonal().norm());
+    tetrahedron_boxes.emplace_back(tet_box.min() - margin, tet_box.max() + margin);
   }
   index->plans.resize(domain.tetrahedra.size());
   tbb::parallel_for(std::size_t{0}, domain.tetrahedra.size(), [&](std::size_t t) {
@@ -132,6 +143,12 @@ int DmsSplineEvaluator::locate(const Eigen::Vector3d& x) const {
       corner[static_cast<std::size_t>(c)] =
           domain.points[static_cast<std::size_t>(domain.tetrahedra[static_cast<std::size_t>(t)][static_cast<std::size_t>(c)])];
     if (in_closed_tetrahedron(x, corner)) found = t;
+  }
+  if (found >= 0) return found;
+  for (const int t : index_->tetrahedra.query(x)) {
+    bool near = true;
+    for (const Eigen::Vector4d& p : index_->outer_planes[static_cast<std::size_t>(t)]) near = near && p.head<3>().dot(x) <= p[3];
+    if (near && (found < 0 || t < found)) found = t;
   }
   return found;
 }

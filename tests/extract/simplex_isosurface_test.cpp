@@ -7,6 +7,7 @@
 #include "support/simplex_domains.h"
 #include "volspline/core/error.h"
 #include "volspline/extract/simplex_isosurface.h"
+#include "volspline/extract/simplex_slices.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
@@ -83,6 +84,29 @@ TEST(SimplexIsosurface, RefusesVolumesWithoutTheAttribute) {
   options = {};
   options.subdivisions = 65;
   EXPECT_THROW(simplex_isosurface(v, options), InvalidInput);
+}
+
+}  // namespace
+}  // namespace volspline
+
+namespace volspline {
+namespace {
+
+// Slices (extract/simplex_slices.h): a plane through the unit-cube domain is the unit square,
+// every vertex on the plane, carrying the attribute's exact value.
+TEST(SimplexSlices, PlaneThroughTheCubeIsTheUnitSquareCarryingTheAttribute) {
+  DmsSplineVolume v = test_support::cube_simplex_volume(2);
+  const Eigen::Vector3d a(0.4, -1.0, 2.0);
+  set_column_from_blossom(v, 3, [&](std::span<const Eigen::Vector3d> args) { return a.dot((args[0] + args[1]) / 2) + 0.25; });
+  const SimplexSlice slice = simplex_plane_slice(v, Plane{Eigen::Vector3d(0, 0, 2), 0.7}, {});
+  ASSERT_GT(slice.mesh.num_triangles(), 20u);
+  ASSERT_EQ(slice.values.size(), slice.mesh.num_vertices());
+  for (std::size_t i = 0; i < slice.mesh.num_vertices(); ++i) {
+    EXPECT_NEAR(slice.mesh.positions[i].z(), 0.35, 1e-12);
+    EXPECT_NEAR(slice.values[i], a.dot(slice.mesh.positions[i]) + 0.25, 1e-10);
+  }
+  EXPECT_NEAR(surface_area(slice.mesh), 1.0, 1e-12);
+  EXPECT_THROW(simplex_plane_slice(v, Plane{Eigen::Vector3d::Zero(), 0.0}, {}), InvalidInput);
 }
 
 }  // namespace

@@ -38,7 +38,9 @@ class DmsSplineEvaluator {
 
   const DmsSplineVolume& volume() const { return *volume_; }
   /// The tetrahedron of Ω that holds x (closed: a point on a face belongs to both, the lower index
-  /// is returned), or -1 outside Ω. Exact orientation predicates.
+  /// is returned), or -1 outside Ω. Exact orientation predicates; a point outside every
+  /// tetrahedron but within 1e-10 of a tetrahedron's size of one counts as in it, so that points
+  /// computed on ∂Ω (lattice points, midpoints) are not lost to rounding.
   int locate(const Eigen::Vector3d& x) const;
   /// Value (order 0) and gradient (order 1) at x. Derivatives are one-sided where they jump (on
   /// knot planes of degree-1 splines, or planes holding four knots): from the side of the
