@@ -40,7 +40,7 @@ FUZZ_SECONDS ?= 25
 EXCHANGE_FUZZ_SECONDS ?= 12
 fuzz: deps
 	@CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" -DVOLSPLINE_BUILD_FUZZ=ON -DVOLSPLINE_BUILD_TESTS=OFF -DVOLSPLINE_BUILD_BENCH=OFF >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz gismo_xml_fuzz irit_itd_fuzz vtu_reader_fuzz
+	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz gismo_xml_fuzz irit_itd_fuzz vtu_reader_fuzz skeleton_reader_fuzz
 	mkdir -p build-fuzz/corpus build-fuzz/corpus-mesh && cp examples/*.json build-fuzz/corpus/ 2>/dev/null || true
 	build-fuzz/bin/model_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 build-fuzz/corpus fuzz/corpus
 	build-fuzz/bin/mesh_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-mesh fuzz/corpus-mesh
@@ -49,6 +49,8 @@ fuzz: deps
 	build-fuzz/bin/gismo_xml_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-gismo fuzz/corpus-gismo
 	build-fuzz/bin/irit_itd_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-irit fuzz/corpus-irit
 	build-fuzz/bin/vtu_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-vtu fuzz/corpus-vtu
+	mkdir -p build-fuzz/corpus-skeleton && cp examples/skeletons/*.json build-fuzz/corpus-skeleton/
+	build-fuzz/bin/skeleton_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-skeleton fuzz/corpus-skeleton
 
 clean:
 	rm -rf $(BUILD_DIR) build-asan build-fuzz out

@@ -1,4 +1,4 @@
-// libFuzzer target for the mesh readers: any bytes, read as OBJ, PLY and STL in turn, either
+// libFuzzer target for the mesh readers: any bytes, read as OBJ, PLY, STL and OFF in turn, either
 // parse or throw a volspline::Error. Anything else (a crash, another exception, a sanitizer
 // report, a hang, memory out of proportion to the input) is a bug. A mesh that parses must be
 // well formed (validate_mesh) and survive a PLY write/read round trip bit for bit.
@@ -55,5 +55,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     check(mesh);
   }
+  volspline::TriangleMesh off;
+  try {
+    off = volspline::parse_off(bytes, "fuzz.off");
+  } catch (const volspline::Error&) {
+    return 0;
+  }
+  check(off);
   return 0;
 }

@@ -252,3 +252,35 @@ TEST(MeshReader, BinaryStlCountsAreCheckedAgainstTheSize) {
 
 }  // namespace
 }  // namespace volspline
+
+namespace volspline {
+namespace {
+
+// OFF, as CGAL's data files and Debian's mesh packages ship it: a closed tetrahedron with a
+// quad-free face list, comments and colours after the indices; polygons become fans.
+TEST(MeshReader, OffGivesTheTrianglesOfItsFacesAndLocatedErrors) {
+  const TriangleMesh tet = parse_off("OFF\n# a tetrahedron\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3 255 0 0\n3 0 3 2\n3 1 2 3\n", "t.off");
+  ASSERT_EQ(tet.num_vertices(), 4u);
+  ASSERT_EQ(tet.num_triangles(), 4u);
+  EXPECT_TRUE(edge_statistics(tet).closed_and_oriented());
+  EXPECT_NEAR(enclosed_volume(tet), 1.0 / 6.0, 1e-15);
+  const TriangleMesh quad = parse_off("OFF 4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n", "q.off");
+  EXPECT_EQ(quad.num_triangles(), 2u);
+  EXPECT_NEAR(surface_area(quad), 1.0, 1e-15);
+  const auto error = [](std::string_view text) {
+    try {
+      parse_off(text, "e.off");
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(error("PLY\n").find("e.off: line 1: expected the header OFF"), std::string::npos);
+  EXPECT_NE(error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n").find("e.off: line 6: expected a vertex index"), std::string::npos);
+  EXPECT_NE(error("OFF\n3 1 0\n0 0 0\n1 0 x\n").find("e.off: line 4: expected a vertex coordinate"), std::string::npos);
+  EXPECT_NE(error("OFF\n99999999 0 0\n").find("line 2: expected the vertex count"), std::string::npos);
+  EXPECT_NE(error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n").find("line 6: expected a face of 3 or more vertices"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace volspline
