@@ -120,8 +120,13 @@ TEST_F(MakeSweptSolidCli, OtherCommandsReportOrSkipSweptSolids) {
   EXPECT_NE(eval.err.find("not on a swept solid"), std::string::npos) << eval.err;
   const auto vtu = test_support::run_cli("convert " + example + " -o " + path("s.vtu"), tmp.path());
   EXPECT_EQ(vtu.code, 2);
-  EXPECT_NE(vtu.err.find("objects[0].type: conversion works on splines, not on a swept solid"), std::string::npos) << vtu.err;
+  EXPECT_NE(vtu.err.find("objects[0]: VTK holds curves, surfaces and volumes, not a swept_solid"), std::string::npos) << vtu.err;
   EXPECT_FALSE(std::filesystem::exists(path("s.vtu")));
+  // A plain change of format passes the swept solid through; refining it is refused.
+  EXPECT_EQ(test_support::run_cli("convert " + example + " -o " + path("s.json"), tmp.path()).code, 0);
+  const auto refined = test_support::run_cli("convert " + example + " -o " + path("r.json") + " --elevate u:1", tmp.path());
+  EXPECT_EQ(refined.code, 2);
+  EXPECT_NE(refined.err.find("conversion works on splines, not on a swept solid"), std::string::npos) << refined.err;
 }
 
 }  // namespace

@@ -100,7 +100,7 @@ TEST(MeshReader, FilesRoundTripThroughWriteMesh) {
     EXPECT_EQ(back.num_triangles(), mesh.num_triangles()) << name;
   }
   EXPECT_THROW(read_mesh(tmp / "missing.ply"), IoError);
-  EXPECT_THROW(read_mesh(tmp / "a.off"), InvalidInput);
+  EXPECT_THROW(read_mesh(tmp / "a.3ds"), InvalidInput);
 }
 
 TEST(MeshReader, HandWrittenObj) {
