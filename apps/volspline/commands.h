@@ -24,6 +24,7 @@ void add_make_swept_solid_kind(CLI::App* make);
 /// `make simplex-spline` (make_simplex_spline.cpp), added by add_make_command.
 void add_make_simplex_spline_kind(CLI::App* make);
 void add_xray_command(CLI::App& app);
+void add_split_tetrahedron_command(CLI::App& app);
 void add_ffd_command(CLI::App& app);
 void add_lattice_command(CLI::App& app);
 void add_jacobian_command(CLI::App& app);

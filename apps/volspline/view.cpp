@@ -114,16 +114,16 @@ SolidViewPictureRequest picture_request_from(const ViewArguments& a) {
 // A simplex spline volume: the isosurfaces ATTRIBUTE:VALUE of its attributes (Hua–He–Qin §6.2),
 // each its own colour of the attribute-isosurface part, shaded with the analytic normals' mesh.
 void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std::ostream& out) {
-  if (a.iso_attribute.empty() && a.slices.empty() && a.planes.empty())
-    throw InvalidInput("a simplex_spline_volume is shown by isosurfaces (--iso-attribute NAME:VALUE) and slices (--slices AXIS:N, "
-                       "--plane NX,NY,NZ,D), or use `volspline xray`",
-                       "--iso-attribute");
   for (const char* option : {"--iso", "--through", "--core", "--paddlewheel", "--faces", "--cutaway"}) {
     const bool given = (std::string(option) == "--iso" && !a.iso.empty()) || (std::string(option) == "--through" && !a.through.empty()) ||
                        (std::string(option) == "--core" && !a.core.empty()) || (std::string(option) == "--paddlewheel" && !a.paddlewheels.empty()) ||
                        (std::string(option) == "--faces" && a.faces) || (std::string(option) == "--cutaway" && a.cutaway);
     if (given) throw InvalidInput(std::string(option) + " works on tensor-product volumes; a simplex_spline_volume takes --iso-attribute, --slices and --plane", option);
   }
+  if (a.iso_attribute.empty() && a.slices.empty() && a.planes.empty())
+    throw InvalidInput("a simplex_spline_volume is shown by isosurfaces (--iso-attribute NAME:VALUE) and slices (--slices AXIS:N, "
+                       "--plane NX,NY,NZ,D), or use `volspline xray`",
+                       "--iso-attribute");
   TriangleMesh mesh;
   std::vector<double> scalars;
   std::string summary;

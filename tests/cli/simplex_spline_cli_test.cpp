@@ -71,6 +71,15 @@ TEST_F(SimplexSplineCli, MakesInspectsEvaluatesConvertsAndXrays) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(path("x.png")));
   EXPECT_EQ(std::filesystem::file_size(path("x.pfm")), std::string("Pf\n40 30\n-1.0\n").size() + 4u * 40 * 30);
+
+  r = run("view " + path("s.json") + " -o " + path("v.png") + " --iso-attribute density:0.5 --slices z:2 --size 64,48");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 slice(s)"), std::string::npos) << r.out;
+
+  r = run("split-tetrahedron " + path("s.json") + " --tetrahedron 3 -o " + path("split.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("re-fit error max"), std::string::npos) << r.out;
+  EXPECT_EQ(std::get<DmsSplineVolume>(read_model(path("split.json")).objects[0].spline).domain().tetrahedra.size(), v.domain().tetrahedra.size() + 3);
 }
 
 TEST_F(SimplexSplineCli, BadInputExitsWithTwoAndWritesNothing) {
@@ -81,6 +90,8 @@ TEST_F(SimplexSplineCli, BadInputExitsWithTwoAndWritesNothing) {
   expect_bad("make simplex-spline --points " + path("points.csv") + " --degree 0 -o " + path("s.json"), "shared control vectors need degree", "s.json");
   ASSERT_EQ(run("make simplex-spline --points " + path("points.csv") + " -o " + path("s.json")).code, 0);
   expect_bad("xray " + path("s.json") + " --attribute heat -o " + path("x.png"), "no attribute \"heat\"", "x.png");
+  expect_bad("split-tetrahedron " + path("s.json") + " --tetrahedron 0 --at 9,9,9 -o " + path("split.json"), "strictly inside", "split.json");
+  expect_bad("view " + path("s.json") + " -o " + path("v.png") + " --iso u:3", "a simplex_spline_volume takes", "v.png");
   std::ofstream(path("sk.json")) << R"({"volspline_skeleton": 1, "elements": [{"kind": "segment", "points": [[0, 0, 0]]}]})";
   expect_bad("make simplex-spline --points " + path("points.csv") + " --skeleton " + path("sk.json") + " -o " + path("t.json"), "sk.json", "t.json");
 }

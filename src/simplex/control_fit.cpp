@@ -1,0 +1,53 @@
+#include "control_fit.h"
+
+#include <algorithm>
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include "volspline/core/error.h"
+#include "volspline/simplex/dms_spline_evaluator.h"
+
+namespace volspline {
+
+std::vector<Eigen::Vector3d> lattice_samples(const TetrahedralMesh& domain, int m) {
+  std::vector<Eigen::Vector3d> samples;
+  for (const auto& t : domain.tetrahedra) {
+    std::array<Eigen::Vector3d, 4> p;
+    for (int c = 0; c < 4; ++c) p[static_cast<std::size_t>(c)] = domain.points[static_cast<std::size_t>(t[static_cast<std::size_t>(c)])];
+    const Eigen::Vector3d centroid = (p[0] + p[1] + p[2] + p[3]) / 4;
+    for (int a = 0; a <= m; ++a)
+      for (int b = 0; a + b <= m; ++b)
+        for (int c = 0; a + b + c <= m; ++c) {
+          const int d = m - a - b - c;
+          const Eigen::Vector3d x = (a * p[0] + b * p[1] + c * p[2] + d * p[3]) / m;
+          samples.push_back(x + 1e-3 * (centroid - x));
+        }
+  }
+  return samples;
+}
+
+void fit_control_columns(DmsSplineVolume& volume, const std::vector<Eigen::Vector3d>& samples, const Eigen::MatrixXd& targets,
+                         const std::vector<int>& columns, const Eigen::MatrixXd& prior) {
+  const int rows = volume.control_vector_count();
+  DmsSplineEvaluator evaluator(volume);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t s = 0; s < samples.size(); ++s)
+    evaluator.for_each_basis_function(samples[s], [&](int row, double value) {
+      if (value != 0) entries.emplace_back(static_cast<int>(s), row, value);
+    });
+  Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(samples.size()), rows);
+  a.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseMatrix<double> normal = a.transpose() * a;
+  const double lambda = 1e-8 * std::max(normal.diagonal().mean(), 1e-300);
+  Eigen::SparseMatrix<double> identity(rows, rows);
+  identity.setIdentity();
+  normal += lambda * identity;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
+  if (solver.info() != Eigen::Success) throw Error("the least-squares system of the control vectors could not be factored");
+  const Eigen::MatrixXd solution = solver.solve(a.transpose() * targets + lambda * prior);
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    volume.control_vectors().col(columns[c]) = solution.col(static_cast<Eigen::Index>(c));
+}
+
+}  // namespace volspline
