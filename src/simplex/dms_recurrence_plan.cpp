@@ -157,6 +157,9 @@ int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMe
 void DmsRecurrencePlan::values(const Eigen::Vector3d& x, double* out) const {
   constexpr double kUndecided = 1e-9;  // as half_open_contains
   const int leaf_count = this->leaf_count();
+  // At a knot, faces of other knots are decided as make_frame decides their fours (flat within
+  // rounding); elsewhere exactly.
+  const int knot = knot_at(x, knots_.data(), knot_count_);
   for (int i = 0; i < leaf_count; ++i) {
     const PlanLeaf& f = leaves_[i];
     const auto l = f.lambda(x);
@@ -166,9 +169,13 @@ void DmsRecurrencePlan::values(const Eigen::Vector3d& x, double* out) const {
     } else if (!(smallest >= -kUndecided) || f.inverse_volume == 0) {
       out[i] = 0;
     } else {
-      out[i] = in_half_open_tetrahedron(x, knots_[f.w[0]], knots_[f.w[1]], knots_[f.w[2]], knots_[f.w[3]])
-                   ? f.inverse_volume
-                   : 0.0;
+      const Eigen::Vector3d& a = knots_[f.w[0]];
+      const Eigen::Vector3d& b = knots_[f.w[1]];
+      const Eigen::Vector3d& c = knots_[f.w[2]];
+      const Eigen::Vector3d& d = knots_[f.w[3]];
+      const bool inside =
+          knot >= 0 ? in_half_open_tetrahedron_at_knot(x, a, b, c, d) : in_half_open_tetrahedron(x, a, b, c, d);
+      out[i] = inside ? f.inverse_volume : 0.0;
     }
   }
   double* interior_out = out + leaf_count;

@@ -2,7 +2,10 @@
 // perturbed point x + ε e_x + ε² e_y + ε³ e_z, decided by CGAL's filtered exact predicates.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 #include "simplex_recurrence.h"
 #include "volspline/simplex/simplex_spline.h"
@@ -24,12 +27,21 @@ int orientation2(double px, double py, double qx, double qy, double rx, double r
       CGAL::orientation(Kernel::Point_2(px, py), Kernel::Point_2(qx, qy), Kernel::Point_2(rx, ry)));
 }
 
-// The sign of det[q - p, r - p, x + ε e_x + ε² e_y + ε³ e_z - p] for small ε > 0: the exact
-// orientation, then the components of the normal n = (q - p) × (r - p) in the order x, y, z.
+// The orientation of (p, q, r, s), 0 where the four points are coplanar within the rounding of
+// their coordinates (simplex_detail::coplanar_within_rounding), as make_frame decides flat fours.
+int rounded_orientation3(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
+                         const Eigen::Vector3d& s) {
+  return simplex_detail::coplanar_within_rounding(p, q, r, s) ? 0 : orientation3(p, q, r, s);
+}
+
+// The sign of det[q - p, r - p, x + ε e_x + ε² e_y + ε³ e_z - p] for small ε > 0: the
+// orientation (exact, or 0 within rounding), then the components of the normal
+// n = (q - p) × (r - p) in the order x, y, z.
 // n_x = orientation of (p, q, r) projected to (y, z), n_y to (z, x), n_z to (x, y).
+template <bool kWithinRounding>
 int perturbed_orientation3(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
                            const Eigen::Vector3d& x) {
-  if (const int s = orientation3(p, q, r, x); s != 0) return s;
+  if (const int s = kWithinRounding ? rounded_orientation3(p, q, r, x) : orientation3(p, q, r, x); s != 0) return s;
   if (const int s = orientation2(p.y(), p.z(), q.y(), q.z(), r.y(), r.z()); s != 0) return s;
   if (const int s = orientation2(p.z(), p.x(), q.z(), q.x(), r.z(), r.x()); s != 0) return s;
   return orientation2(p.x(), p.y(), q.x(), q.y(), r.x(), r.y());
@@ -44,16 +56,24 @@ int perturbed_orientation2(const Eigen::Vector2d& p, const Eigen::Vector2d& q, c
   return 0;
 }
 
+// x replaces each vertex in turn and must keep the orientation; the determinants are permuted
+// so that x comes last: (a,b,x,d) -> -(a,b,d,x), (a,x,c,d) -> +(a,c,d,x), (x,b,c,d) -> -(b,c,d,x).
+template <bool kWithinRounding>
+bool in_perturbed_tetrahedron(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                              const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
+  const int sign = kWithinRounding ? rounded_orientation3(a, b, c, d) : orientation3(a, b, c, d);
+  if (sign == 0) return false;
+  return perturbed_orientation3<kWithinRounding>(a, b, c, x) == sign &&
+         -perturbed_orientation3<kWithinRounding>(a, b, d, x) == sign &&
+         perturbed_orientation3<kWithinRounding>(a, c, d, x) == sign &&
+         -perturbed_orientation3<kWithinRounding>(b, c, d, x) == sign;
+}
+
 }  // namespace
 
 bool in_half_open_tetrahedron(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
-  const int sign = orientation3(a, b, c, d);
-  if (sign == 0) return false;
-  // x replaces each vertex in turn and must keep the orientation; the determinants are permuted
-  // so that x comes last: (a,b,x,d) -> -(a,b,d,x), (a,x,c,d) -> +(a,c,d,x), (x,b,c,d) -> -(b,c,d,x).
-  return perturbed_orientation3(a, b, c, x) == sign && -perturbed_orientation3(a, b, d, x) == sign &&
-         perturbed_orientation3(a, c, d, x) == sign && -perturbed_orientation3(b, c, d, x) == sign;
+  return in_perturbed_tetrahedron<false>(x, a, b, c, d);
 }
 
 bool in_half_open_triangle(const Eigen::Vector2d& x, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
@@ -71,6 +91,33 @@ bool exactly_coplanar(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
   return orientation3(a, b, c, d) == 0;
 }
 
+bool coplanar_within_rounding(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                              const Eigen::Vector3d& d) {
+  // In lexicographic order, so that the floating determinant, and so the decision, does not depend
+  // on the order of the four points (every leaf and face that shares them decides alike).
+  std::array<const Eigen::Vector3d*, 4> p = {&a, &b, &c, &d};
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector3d* u, const Eigen::Vector3d* v) {
+    return std::lexicographical_compare(u->data(), u->data() + 3, v->data(), v->data() + 3);
+  });
+  const Eigen::Vector3d e1 = *p[1] - *p[0];
+  const Eigen::Vector3d e2 = *p[2] - *p[0];
+  const Eigen::Vector3d e3 = *p[3] - *p[0];
+  const double det = e1.dot(e2.cross(e3));
+  const double magnitude = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), c.cwiseAbs().maxCoeff(),
+                                     d.cwiseAbs().maxCoeff()});
+  const double n1 = e1.norm();
+  const double n2 = e2.norm();
+  const double n3 = e3.norm();
+  // A change of each coordinate by δ changes det by at most about 2δ(n1 n2 + n1 n3 + n2 n3); the
+  // floating determinant itself is off by less than 10 u·magnitude·(that sum).
+  return std::abs(det) <= kCoordinateRounding * magnitude * (n1 * n2 + n1 * n3 + n2 * n3);
+}
+
+bool in_half_open_tetrahedron_at_knot(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                      const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
+  return in_perturbed_tetrahedron<true>(x, a, b, c, d);
+}
+
 bool exactly_collinear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   return orientation2(a.x(), a.y(), b.x(), b.y(), c.x(), c.y()) == 0;
 }
@@ -82,10 +129,12 @@ bool make_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
   const Eigen::Vector3d e3 = d - a;
   const Eigen::Vector3d n1 = e2.cross(e3);
   const double det = e1.dot(n1);
-  // Rounding can turn an exactly coplanar four into a tiny nonzero determinant; the exact
-  // predicate decides whenever |det| is within a generous multiple of that rounding.
+  // Coplanar within the rounding of the coordinates (exactly coplanar included): a flat four. Its
+  // 1/|det|, were it kept, would be rounding noise of any size, and the half-open decisions at
+  // points on its plane would not match it (docs/simplex-splines.md, "Knots coplanar within
+  // rounding"). The test is only needed where |det| is small relative to the edges.
   const double scale = e1.squaredNorm() * e2.squaredNorm() * e3.squaredNorm();
-  if (!(det * det > 1e-20 * scale) && (det == 0 || exactly_coplanar(a, b, c, d))) return false;
+  if (!(det * det > 1e-20 * scale) && coplanar_within_rounding(a, b, c, d)) return false;
   const double inverse = 1.0 / det;
   frame.origin = a;
   frame.det = det;

@@ -280,6 +280,7 @@ void PointRecurrence::attach(const KnotBinding* binding, int expected_subsets) {
 
 void PointRecurrence::set_point(const Eigen::Vector3d& x) {
   x_ = x;
+  knot_ = knot_at(x, &binding_->knot(0), binding_->count());
   coordinates_ = binding_->reference_frame().lambda(x);
   memo_.clear();
 }
@@ -297,14 +298,15 @@ double PointRecurrence::value(KnotMask subset) {
       const auto& c = binding_->knot(idx[2]);
       const auto& d = binding_->knot(idx[3]);
       BarycentricFrame frame;
-      if (make_frame(a, b, c, d, frame) && half_open_contains(frame.lambda(x_), x_, a, b, c, d)) {
+      if (make_frame(a, b, c, d, frame) && half_open_contains(frame.lambda(x_), x_, knot_ >= 0, a, b, c, d)) {
         v = 1.0 / std::abs(frame.det);
       }
     } else {
       std::array<int, 4> w{};
       BarycentricFrame frame;
       if (binding_->choose(subset, &x_, w, frame)) {
-        const auto l = frame.lambda(x_);
+        auto l = frame.lambda(x_);
+        if (knot_ >= 0) snap_to_knot(l, w, knot_);
         for (int j = 0; j < 4; ++j) {
           if (l[j] != 0) v += l[j] * value(subset & ~bit(w[j]));
         }
@@ -336,7 +338,8 @@ SimplexSplineJet PointRecurrence::jet(KnotMask subset, int order) {
   std::array<int, 4> w{};
   BarycentricFrame frame;
   if (!binding_->choose(subset, &x_, w, frame)) return out;
-  const auto l = frame.lambda(x_);
+  auto l = frame.lambda(x_);
+  if (knot_ >= 0) snap_to_knot(l, w, knot_);
   for (int j = 0; j < 4; ++j) {
     const KnotMask child = subset & ~bit(w[j]);
     const double child_value = value(child);

@@ -10,6 +10,7 @@
 #include <bit>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "volspline/simplex/simplex_spline.h"
@@ -53,17 +54,59 @@ bool exactly_coplanar(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
 /// Whether a, b, c are collinear, decided exactly.
 bool exactly_collinear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
 
-/// The frame of four knots, or false when they are exactly coplanar. A floating determinant that
-/// is tiny relative to the edge lengths is checked by the exact predicate.
+/// The relative rounding assumed in the coordinates of knots and points (64 units in the last
+/// place): four points whose determinant could vanish under such a change count as coplanar.
+inline constexpr double kCoordinateRounding = 64 * std::numeric_limits<double>::epsilon() / 2;
+
+/// Whether a, b, c, d are coplanar within the rounding of their coordinates: |det| <=
+/// kCoordinateRounding · max|coordinate| · (sum of the pairwise products of the edge lengths from
+/// the lexicographically smallest point), the determinant taken in that order, so that the
+/// decision does not depend on the order of the arguments. Exactly coplanar points always are.
+bool coplanar_within_rounding(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                              const Eigen::Vector3d& d);
+
+/// in_half_open_tetrahedron for x that is itself a knot, with coplanar_within_rounding in place
+/// of exact coplanarity: a four that is flat within rounding contains nothing, and x counts as on
+/// a face's plane where x and the face's knots are a flat four, so that the perturbation decides,
+/// as make_frame decides that four (docs/simplex-splines.md, "Knots coplanar within rounding").
+bool in_half_open_tetrahedron_at_knot(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                      const Eigen::Vector3d& c, const Eigen::Vector3d& d);
+
+/// The index of the first of knots[0..count) that equals x, or -1.
+inline int knot_at(const Eigen::Vector3d& x, const Eigen::Vector3d* knots, int count) {
+  for (int i = 0; i < count; ++i) {
+    if (knots[i] == x) return i;
+  }
+  return -1;
+}
+
+/// Where x is the knot `knot` and that knot is w[j], its barycentric coordinates are exactly e_j;
+/// the floating ones are off by the rounding times W's aspect ratio, and eq. 1 multiplies them by
+/// children that can be large near a cloud (1/|det| of its small tetrahedra), so the exact ones
+/// replace them. A knot repeated in W keeps the floating coordinates (W is then flat).
+template <typename Indices>
+inline void snap_to_knot(std::array<double, 4>& lambda, const Indices& w, int knot) {
+  for (int j = 0; j < 4; ++j) {
+    if (static_cast<int>(w[j]) == knot) {
+      lambda = {0, 0, 0, 0};
+      lambda[j] = 1;
+      return;
+    }
+  }
+}
+
+/// The frame of four knots, or false when they are coplanar within rounding
+/// (coplanar_within_rounding; checked only where the floating determinant is tiny relative to
+/// the edge lengths).
 bool make_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                 const Eigen::Vector3d& d, BarycentricFrame& frame);
 
 /// The half-open rule for x with barycentric coordinates `lambda` with respect to (a, b, c, d):
 /// decided by the signs of lambda where they are clearly away from 0, by the exact predicates
-/// (in_half_open_tetrahedron) otherwise. The rounding error of a barycentric coordinate is a few
+/// (in_half_open_tetrahedron, or in_half_open_tetrahedron_at_knot where x is a knot) otherwise. The rounding error of a barycentric coordinate is a few
 /// units in the last place times the tetrahedron's aspect ratio; 1e-9 leaves room for aspect
 /// ratios up to about 1e6.
-inline bool half_open_contains(const std::array<double, 4>& lambda, const Eigen::Vector3d& x,
+inline bool half_open_contains(const std::array<double, 4>& lambda, const Eigen::Vector3d& x, bool x_is_knot,
                                const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                                const Eigen::Vector3d& d) {
   constexpr double kUndecided = 1e-9;
@@ -72,7 +115,8 @@ inline bool half_open_contains(const std::array<double, 4>& lambda, const Eigen:
     if (!(l >= -kUndecided)) return false;  // NaN too
     if (l <= kUndecided) clearly_inside = false;
   }
-  return clearly_inside || in_half_open_tetrahedron(x, a, b, c, d);
+  if (clearly_inside) return true;
+  return x_is_knot ? in_half_open_tetrahedron_at_knot(x, a, b, c, d) : in_half_open_tetrahedron(x, a, b, c, d);
 }
 
 /// The parameters s where every λ_j + s·μ_j >= 0 (the chord of a frame's tetrahedron along a line
@@ -199,6 +243,7 @@ class PointRecurrence {
   const KnotBinding* binding_ = nullptr;
   SubsetMemo memo_;
   Eigen::Vector3d x_ = Eigen::Vector3d::Zero();
+  int knot_ = -1;  // the knot that x is, or -1
   std::array<double, 4> coordinates_{};
 };
 

@@ -41,8 +41,9 @@ void check_finite(std::span<const Eigen::Vector3d> knots) {
 }
 
 // Eq. 1 without memoisation over the knots of `subset`.
-double reference_value(const Eigen::Vector3d& x, const std::array<Eigen::Vector3d, kMaxTrivariateKnots>& knots,
-                       const KnotBinding& binding, KnotMask subset) {
+double reference_value(const Eigen::Vector3d& x, int knot,
+                       const std::array<Eigen::Vector3d, kMaxTrivariateKnots>& knots, const KnotBinding& binding,
+                       KnotMask subset) {
   std::array<int, simplex_detail::kMaxRecurrenceKnots> idx{};
   const int count = simplex_detail::subset_indices(subset, idx);
   if (count == 4) {
@@ -52,15 +53,17 @@ double reference_value(const Eigen::Vector3d& x, const std::array<Eigen::Vector3
     const auto& c = knots[idx[2]];
     const auto& d = knots[idx[3]];
     if (!simplex_detail::make_frame(a, b, c, d, frame)) return 0;
-    return simplex_detail::half_open_contains(frame.lambda(x), x, a, b, c, d) ? 1.0 / std::abs(frame.det) : 0.0;
+    return simplex_detail::half_open_contains(frame.lambda(x), x, knot >= 0, a, b, c, d) ? 1.0 / std::abs(frame.det)
+                                                                                        : 0.0;
   }
   std::array<int, 4> w{};
   BarycentricFrame frame;
   if (!binding.choose(subset, &x, w, frame)) return 0;
-  const auto l = frame.lambda(x);
+  auto l = frame.lambda(x);
+  if (knot >= 0) simplex_detail::snap_to_knot(l, w, knot);
   double v = 0;
   for (int j = 0; j < 4; ++j) {
-    if (l[j] != 0) v += l[j] * reference_value(x, knots, binding, subset & ~(KnotMask{1} << w[j]));
+    if (l[j] != 0) v += l[j] * reference_value(x, knot, knots, binding, subset & ~(KnotMask{1} << w[j]));
   }
   return v;
 }
@@ -164,7 +167,8 @@ double simplex_spline_value(const Eigen::Vector3d& x, std::span<const Eigen::Vec
   std::copy(knots.begin(), knots.end(), copy.begin());
   KnotBinding binding;
   binding.bind(copy.data(), static_cast<int>(knots.size()), BarycentricChoice::kContainingThenLargest);
-  return reference_value(x, copy, binding, all_knots(knots.size()));
+  const int knot = simplex_detail::knot_at(x, copy.data(), static_cast<int>(knots.size()));
+  return reference_value(x, knot, copy, binding, all_knots(knots.size()));
 }
 
 SimplexSplineJet simplex_spline_jet(const Eigen::Vector3d& x, std::span<const Eigen::Vector3d> knots, int order) {
