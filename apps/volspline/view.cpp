@@ -111,6 +111,23 @@ SolidViewPictureRequest picture_request_from(const ViewArguments& a) {
   return request;
 }
 
+// The picture and, with --mesh, the mesh: both prepared before either is committed, so a failure
+// leaves neither behind.
+void write_picture_and_mesh(const ViewArguments& a, const std::string& png, const TriangleMesh& mesh, MeshFormat format,
+                            MeshWriteOptions options) {
+  if (a.mesh.empty()) {
+    write_file_atomically(a.image, png);
+    return;
+  }
+  options.ascii = a.ascii;
+  AtomicFile mesh_file(a.mesh);
+  mesh_file.stream() << mesh_bytes(mesh, format, options);
+  AtomicFile picture_file(a.image);
+  picture_file.stream() << png;
+  mesh_file.commit();
+  picture_file.commit();
+}
+
 // A simplex spline volume: the isosurfaces ATTRIBUTE:VALUE of its attributes (Hua–He–Qin §6.2),
 // each its own colour of the attribute-isosurface part, shaded with the analytic normals' mesh.
 void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std::ostream& out) {
@@ -187,18 +204,7 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
   }
   const std::string png = png_bytes(render_mesh(mesh, render));
   const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
-  if (!a.mesh.empty()) {
-    AtomicFile mesh_file(a.mesh);
-    MeshWriteOptions mesh_options;
-    mesh_options.ascii = a.ascii;
-    mesh_file.stream() << mesh_bytes(mesh, mesh_format, mesh_options);
-    AtomicFile picture_file(a.image);
-    picture_file.stream() << png;
-    mesh_file.commit();
-    picture_file.commit();
-  } else {
-    write_file_atomically(a.image, png);
-  }
+  write_picture_and_mesh(a, png, mesh, mesh_format, MeshWriteOptions{});
   out << "wrote " << a.image << ": " << mesh.num_triangles() << " triangles" << summary;
   if (colored) {
     const auto [lo, hi] = scalar_range(mesh, render);
@@ -232,20 +238,7 @@ void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
   if (picture.mesh.triangles.empty()) std::cerr << "volspline: note: nothing to show: the probes miss the solid\n";
   {
     const ProgressPhase phase(progress, "writing");
-    // Both files are prepared before either is committed, so a failure leaves neither behind.
-    const std::string png = png_bytes(picture.image);
-    if (!a.mesh.empty()) {
-      MeshWriteOptions mesh_options = picture.mesh_fields;
-      mesh_options.ascii = a.ascii;
-      AtomicFile mesh_file(a.mesh);
-      mesh_file.stream() << mesh_bytes(picture.mesh, mesh_format, mesh_options);
-      AtomicFile picture_file(a.image);
-      picture_file.stream() << png;
-      mesh_file.commit();
-      picture_file.commit();
-    } else {
-      write_file_atomically(a.image, png);
-    }
+    write_picture_and_mesh(a, png_bytes(picture.image), picture.mesh, mesh_format, picture.mesh_fields);
   }
   out << "wrote " << a.image << ": " << picture.mesh.num_triangles() << " triangles from " << picture.volumes << " volume(s)";
   if (!picture.planes.empty()) out << ", " << picture.planes.size() << " plane(s)";

@@ -1,4 +1,5 @@
 #include "simplex_vtu.h"
+#include "vtk_data_array.h"
 
 #include <map>
 
@@ -7,18 +8,6 @@
 #include "volspline/simplex/dms_spline_evaluator.h"
 
 namespace volspline {
-namespace {
-
-void data_array(std::string& out, const char* type, const std::string& name, int components, const std::string& values) {
-  out += "        <DataArray type=\"";
-  out += type;
-  out += "\"";
-  if (!name.empty()) out += " Name=\"" + name + "\"";
-  if (components > 1) out += " NumberOfComponents=\"" + std::to_string(components) + "\"";
-  out += " format=\"ascii\">\n          " + values + "\n        </DataArray>\n";
-}
-
-}  // namespace
 
 std::string simplex_spline_vtu_text(const DmsSplineVolume& volume) {
   for (const std::string& name : volume.attribute_names())
@@ -61,15 +50,15 @@ std::string simplex_spline_vtu_text(const DmsSplineVolume& volume) {
   out += "  <UnstructuredGrid>\n";
   out += "    <Piece NumberOfPoints=\"" + std::to_string(nodes.size()) + "\" NumberOfCells=\"" + std::to_string(domain.tetrahedra.size()) + "\">\n";
   out += "      <PointData>\n";
-  for (std::size_t a = 0; a < attributes.size(); ++a) data_array(out, "Float64", volume.attribute_names()[a], 1, attributes[a]);
+  for (std::size_t a = 0; a < attributes.size(); ++a) vtk_data_array(out, "Float64", volume.attribute_names()[a], 1, attributes[a]);
   out += "      </PointData>\n      <CellData>\n";
-  data_array(out, "Int64", "Tetrahedron", 1, tet_index);
+  vtk_data_array(out, "Int64", "Tetrahedron", 1, tet_index);
   out += "      </CellData>\n      <Points>\n";
-  data_array(out, "Float64", "Points", 3, points);
+  vtk_data_array(out, "Float64", "Points", 3, points);
   out += "      </Points>\n      <Cells>\n";
-  data_array(out, "Int64", "connectivity", 1, connectivity);
-  data_array(out, "Int64", "offsets", 1, offsets);
-  data_array(out, "UInt8", "types", 1, types);
+  vtk_data_array(out, "Int64", "connectivity", 1, connectivity);
+  vtk_data_array(out, "Int64", "offsets", 1, offsets);
+  vtk_data_array(out, "UInt8", "types", 1, types);
   out += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   return out;
 }

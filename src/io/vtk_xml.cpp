@@ -1,6 +1,7 @@
 #include "volspline/io/vtk_xml.h"
 
 #include "simplex_vtu.h"
+#include "vtk_data_array.h"
 
 #include <algorithm>
 #include <cmath>
@@ -169,16 +170,6 @@ void write_object(Arrays& a, const TensorSpline<D>& spline, const ModelObject& o
   }
 }
 
-void data_array(std::string& out, const char* type, const std::string& name, int components, const std::string& values) {
-  out += "        <DataArray type=\"";
-  out += type;
-  out += "\"";
-  if (!name.empty()) out += " Name=\"" + name + "\"";
-  if (components > 1) out += " NumberOfComponents=\"" + std::to_string(components) + "\"";
-  out += " format=\"ascii\">\n          ";
-  out += values;
-  out += "\n        </DataArray>\n";
-}
 
 std::string xml_escaped(const std::string& text) {
   std::string out;
@@ -245,21 +236,21 @@ std::string vtu_text(const Model& model) {
   if (rational) out += " RationalWeights=\"RationalWeights\"";
   if (jacobian) out += " Scalars=\"Jacobian\"";
   out += ">\n";
-  if (rational) data_array(out, "Float64", "RationalWeights", 1, a.weights);
-  if (jacobian) data_array(out, "Float64", "Jacobian", 1, a.jacobian);
-  for (std::size_t f = 0; f < names.size(); ++f) data_array(out, "Float64", xml_escaped(names[f]), 1, a.attributes[f]);
+  if (rational) vtk_data_array(out, "Float64", "RationalWeights", 1, a.weights);
+  if (jacobian) vtk_data_array(out, "Float64", "Jacobian", 1, a.jacobian);
+  for (std::size_t f = 0; f < names.size(); ++f) vtk_data_array(out, "Float64", xml_escaped(names[f]), 1, a.attributes[f]);
   out += "      </PointData>\n";
   out += "      <CellData HigherOrderDegrees=\"HigherOrderDegrees\">\n";
-  data_array(out, "Int32", "HigherOrderDegrees", 3, a.degrees);
-  data_array(out, "Int32", "Object", 1, a.objects);
+  vtk_data_array(out, "Int32", "HigherOrderDegrees", 3, a.degrees);
+  vtk_data_array(out, "Int32", "Object", 1, a.objects);
   out += "      </CellData>\n";
   out += "      <Points>\n";
-  data_array(out, "Float64", "Points", 3, a.points);
+  vtk_data_array(out, "Float64", "Points", 3, a.points);
   out += "      </Points>\n";
   out += "      <Cells>\n";
-  data_array(out, "Int64", "connectivity", 1, a.connectivity);
-  data_array(out, "Int64", "offsets", 1, a.offsets);
-  data_array(out, "UInt8", "types", 1, a.types);
+  vtk_data_array(out, "Int64", "connectivity", 1, a.connectivity);
+  vtk_data_array(out, "Int64", "offsets", 1, a.offsets);
+  vtk_data_array(out, "UInt8", "types", 1, a.types);
   out += "      </Cells>\n";
   out += "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   return out;
