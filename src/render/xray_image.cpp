@@ -261,8 +261,10 @@ void XrayRenderer::render() {
         double s0 = s.chords[static_cast<std::size_t>(ray.c0)][0], s1 = s.chords[static_cast<std::size_t>(ray.c1 - 1)][1];
         if (!clip_ray(s.support_planes[static_cast<std::size_t>(t)], ray.origin, ray.direction, s0, s1)) continue;
         for (int c = ray.c0; c < ray.c1; ++c) {
-          const double a = std::max(s0, s.chords[static_cast<std::size_t>(c)][0]), b = std::min(s1, s.chords[static_cast<std::size_t>(c)][1]);
-          if (!(a < b)) continue;
+          // The chord itself, not its part inside the support's enclosure: the kernel clips to the
+          // support's box, and ends outside it need no boundary terms (ends on the enclosure would).
+          const double a = s.chords[static_cast<std::size_t>(c)][0], b = s.chords[static_cast<std::size_t>(c)][1];
+          if (!(std::max(s0, a) < std::min(s1, b))) continue;
           local.basis.line_integrals(ray.origin, ray.direction, a, b, plan, local.integrals);
           ++local.count;
           for (std::size_t beta = 0; beta < weights.size(); ++beta) ray.sum += weights[beta] * local.integrals[beta];
@@ -303,8 +305,8 @@ int XrayRenderer::update_coefficient(int row, double delta) {
         if (!clip_ray(s.support_planes[static_cast<std::size_t>(t)], o, d, s0, s1)) continue;
         double integral = 0;
         for (int c = c0; c < c1; ++c) {
-          const double a = std::max(s0, s.chords[static_cast<std::size_t>(c)][0]), b = std::min(s1, s.chords[static_cast<std::size_t>(c)][1]);
-          if (!(a < b)) continue;
+          const double a = s.chords[static_cast<std::size_t>(c)][0], b = s.chords[static_cast<std::size_t>(c)][1];
+          if (!(std::max(s0, a) < std::min(s1, b))) continue;
           basis.line_integrals(o, d, a, b, plan, integrals);
           integral += integrals[static_cast<std::size_t>(beta)];
         }
