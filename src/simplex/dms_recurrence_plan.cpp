@@ -154,12 +154,11 @@ int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMe
   return code;
 }
 
-void DmsRecurrencePlan::values(const Eigen::Vector3d& x, double* out) const {
+void DmsRecurrencePlan::values(const Eigen::Vector3d& x, double* out, int knot) const {
   constexpr double kUndecided = 1e-9;  // as half_open_contains
   const int leaf_count = this->leaf_count();
   // At a knot, faces of other knots are decided as make_frame decides their fours (flat within
   // rounding); elsewhere exactly.
-  const int knot = knot_at(x, knots_.data(), knot_count_);
   for (int i = 0; i < leaf_count; ++i) {
     const PlanLeaf& f = leaves_[i];
     const auto l = f.lambda(x);

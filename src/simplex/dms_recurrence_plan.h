@@ -81,12 +81,23 @@ class DmsRecurrencePlan {
   /// The node of V_β and |d(p_i, q_j, r_k, s_l)| of eq. 5, per β.
   int top(int b) const { return tops_[b]; }
   double scale(int b) const { return scales_[b]; }
+  /// The subset V_β of the b-th multi-index.
+  KnotMask top_mask(int b) const {
+    const int t = tops_[b];
+    return t < leaf_count() ? leaves_[t].mask : interior(t).mask;
+  }
+  const Eigen::Vector3d* knots() const { return knots_.data(); }
+  int knot_count() const { return knot_count_; }
+  /// The index of the knot that x is, or -1.
+  int knot_at(const Eigen::Vector3d& x) const { return simplex_detail::knot_at(x, knots_.data(), knot_count_); }
   bool outside_box(const Eigen::Vector3d& x) const {
     return (x.array() < lo_.array()).any() || (x.array() > hi_.array()).any();
   }
 
   /// M(x | subset) of every node into out[0..size()).
-  void values(const Eigen::Vector3d& x, double* out) const;
+  void values(const Eigen::Vector3d& x, double* out) const { values(x, out, knot_at(x)); }
+  /// The same where `knot` = knot_at(x) is known.
+  void values(const Eigen::Vector3d& x, double* out, int knot) const;
   /// ∫_a^b M(origin + t·direction | subset) dt of every node into out[0..size()); scratch holds
   /// 2·size() doubles.
   void line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a, double b, double* out,

@@ -46,6 +46,20 @@ class DmsRecurrenceState {
   double* node_values() { return node_values_.data(); }
   double* scratch() { return scratch_.data(); }
 
+  // The memoised recurrence over the knots of `plan` with W containing x, for points that are
+  // knots (evaluate_plan).
+  PointRecurrence& recurrence_at(const DmsRecurrencePlan& plan, const Eigen::Vector3d& x) {
+    const int cloud_size = degree_ + 1;
+    const std::array<int, 4> vertices = {0, cloud_size, 2 * cloud_size, 3 * cloud_size};
+    binding_.bind(plan.knots(), plan.knot_count(), BarycentricChoice::kContainingThenLargest, &vertices);
+    if (!attached_) {
+      recurrence_.attach(&binding_, expected_dms_subsets(degree_));
+      attached_ = true;
+    }
+    recurrence_.set_point(x);
+    return recurrence_;
+  }
+
  private:
   int degree_;
   std::vector<DmsRecurrencePlan> plans_;
@@ -54,6 +68,9 @@ class DmsRecurrenceState {
   std::vector<double> node_values_;
   std::vector<double> scratch_;
   SubsetMemo index_;
+  KnotBinding binding_;
+  PointRecurrence recurrence_;
+  bool attached_ = false;
 };
 
 }  // namespace simplex_detail
@@ -125,9 +142,24 @@ void DmsTetrahedronBasis::evaluate_plan(const Eigen::Vector3d& x, const simplex_
   out.gradients.assign(order >= 1 ? count : 0, Eigen::Vector3d::Zero());
   out.hessians.assign(order >= 2 ? count : 0, Eigen::Matrix3d::Zero());
   if (plan.outside_box(x)) return;
+  if (plan.knot_at(x) >= 0) {
+    // At a knot the plan's fixed W, which need not contain x, make eq. 1 cancel among children as
+    // large as 1/|det| of a cloud's small tetrahedra; W containing x (all λ_j >= 0, exactly e_j
+    // where x is one of W's knots) does not (docs/simplex-splines.md, "Knots coplanar within
+    // rounding"). Only at knots: choosing W per subset and point is slower.
+    auto& recurrence = state_->recurrence_at(plan, x);
+    for (std::size_t b = 0; b < count; ++b) {
+      const double scale = plan.scale(static_cast<int>(b));
+      const SimplexSplineJet jet = recurrence.jet(plan.top_mask(static_cast<int>(b)), order);
+      out.values[b] = scale * jet.value;
+      if (order >= 1) out.gradients[b] = scale * jet.gradient;
+      if (order >= 2) out.hessians[b] = scale * jet.hessian;
+    }
+    return;
+  }
   state_->fit(plan);
   double* m = state_->node_values();
-  plan.values(x, m);
+  plan.values(x, m, -1);
   const int n = degree_;
   for (std::size_t b = 0; b < count; ++b) {
     const int top = plan.top(static_cast<int>(b));

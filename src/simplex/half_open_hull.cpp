@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 #include "simplex_recurrence.h"
 #include "volspline/simplex/simplex_spline.h"

@@ -86,7 +86,10 @@ class DmsTetrahedronBasis {
   const std::vector<std::array<int, 4>>& multi_indices() const { return multi_indices_; }
 
   /// clouds[c] points at the n+1 knots t_{c,0..n} of vertex c (c = 0..3 for p, q, r, s); t_{c,0}
-  /// is the vertex. Points outside the bounding box of the knots get zeros at once.
+  /// is the vertex. Points outside the bounding box of the knots get zeros at once. A point that
+  /// is one of the knots (a vertex, say) is evaluated by the memoised recurrence with W containing
+  /// it instead of the compiled plan: the plan's fixed W cancel there (docs/simplex-splines.md,
+  /// "Knots coplanar within rounding"); it costs a few plan evaluations.
   /// \throw InvalidInput for order outside 0..2 or a non-finite point or knot.
   void evaluate(const Eigen::Vector3d& x, const std::array<const Eigen::Vector3d*, 4>& clouds, int order,
                 DmsBasisValues& out);
