@@ -18,6 +18,7 @@
 #include "volspline/pipeline/solid_view_picture.h"
 #include "volspline/extract/simplex_isosurface.h"
 #include "volspline/extract/simplex_slices.h"
+#include "volspline/extract/simplex_cells.h"
 
 #include <Eigen/Geometry>
 #include "volspline/io/atomic_file.h"
@@ -137,9 +138,9 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
                        (std::string(option) == "--faces" && a.faces) || (std::string(option) == "--cutaway" && a.cutaway);
     if (given) throw InvalidInput(std::string(option) + " works on tensor-product volumes; a simplex_spline_volume takes --iso-attribute, --slices and --plane", option);
   }
-  if (a.iso_attribute.empty() && a.slices.empty() && a.planes.empty())
-    throw InvalidInput("a simplex_spline_volume is shown by isosurfaces (--iso-attribute NAME:VALUE) and slices (--slices AXIS:N, "
-                       "--plane NX,NY,NZ,D), or use `volspline xray`",
+  if (a.iso_attribute.empty() && a.slices.empty() && a.planes.empty() && a.cells == 0)
+    throw InvalidInput("a simplex_spline_volume is shown by isosurfaces (--iso-attribute NAME:VALUE), slices (--slices AXIS:N, "
+                       "--plane NX,NY,NZ,D) and shrunken cells (--cells K), or use `volspline xray`",
                        "--iso-attribute");
   TriangleMesh mesh;
   std::vector<double> scalars;
@@ -161,6 +162,12 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
     mesh.append(surface.mesh);
     scalars.insert(scalars.end(), surface.mesh.num_vertices(), options.value);
     summary += "; " + text + ": " + std::to_string(surface.mesh.num_triangles()) + " triangles (k = " + std::to_string(surface.subdivisions) + ")";
+  }
+  if (a.cells > 0) {
+    const TriangleMesh cells = simplex_cell_mesh(volume, a.cells);
+    mesh.append(cells);
+    scalars.insert(scalars.end(), cells.num_vertices(), 0.0);
+    summary += "; " + std::to_string(cells.num_triangles() / 4) + " cells";
   }
   std::vector<Plane> planes;
   Eigen::AlignedBox3d box;
@@ -261,6 +268,7 @@ std::string view_command_line(const ViewArguments& a) {
   option("--core", a.core);
   for (const auto& s : a.paddlewheels) option("--paddlewheel", s);
   for (const auto& s : a.iso_attribute) option("--iso-attribute", s);
+  if (a.cells > 0) option("--cells", std::to_string(a.cells));
   if (a.faces) c += " --faces";
   if (a.cutaway) c += " --cutaway";
   option("--color", a.color);
@@ -295,6 +303,8 @@ void add_view_command(CLI::App& app) {
                 "showing those slices in place");
   cmd->add_option("--color", a->color, "colour by a field: jacobian, u, v, w or the name of an attribute");
   cmd->add_option("--range", a->range, "MIN,MAX of the colour map (default: the field's range; a Jacobian of both signs is centred on 0)");
+  cmd->add_option("--cells", a->cells, "a simplex_spline_volume's solid as K x K x K shrunken cells per tetrahedron (Hua-He-Qin Fig. 1b)")
+      ->check(CLI::Range(0, 16));
   cmd->add_option("--iso-attribute", a->iso_attribute, "a simplex_spline_volume's isosurface NAME:VALUE of an attribute (repeatable)");
   cmd->add_option("--mesh", a->mesh, "also write the shown surfaces: .ply (with the field as a vertex property), .obj, .glb (field colours)");
   cmd->add_option("--resolution", a->resolution, "segments per parameter direction, plus every knot (default 32)")->check(CLI::Range(1, 512));

@@ -16,6 +16,8 @@ struct ViewArguments {
   std::vector<std::string> iso, slices, planes, paddlewheels;
   /// Isosurfaces ATTRIBUTE:VALUE of a simplex spline volume (repeatable).
   std::vector<std::string> iso_attribute;
+  /// Cells per tetrahedron edge of a simplex spline volume shown shrunken (0: none).
+  int cells = 0;
   int resolution = 32;
   bool faces = false, cutaway = false, edges = false, transparent = false, ascii = false;
 };

@@ -73,8 +73,11 @@ Eigen::Matrix3d vertex_rotation(int vertex) {
 std::vector<Eigen::Vector3d> spread_directions(int n) {
   std::vector<Eigen::Vector3d> d;
   const double golden_angle = std::numbers::pi * (3 - std::sqrt(5.0));
+  // The first n of n + 1 spherical Fibonacci points: the n points alone are symmetric (z_i =
+  // −z_{n−1−i}, angles averaging to the middle one's), which for odd n puts the vertex and three
+  // of its sub-knots on one plane, a flat four with 1/|det| ~ 1e20 (simplex splines at knots).
   for (int i = 0; i < n; ++i) {
-    const double z = 1 - (2.0 * i + 1) / n;
+    const double z = 1 - (2.0 * i + 1) / (n + 1);
     const double r = std::sqrt(std::max(0.0, 1 - z * z));
     d.emplace_back(r * std::cos(golden_angle * i), r * std::sin(golden_angle * i), z);
   }
