@@ -36,5 +36,7 @@ void add_sweep_envelope_command(CLI::App& app);
 class DemoRun;
 /// Writes the boundary-determination examples of `demo` (those it wants) and adds them to its gallery.
 void write_boundary_demo(DemoRun& demo);
+/// The simplex-spline example of `demo` (demo_simplex.cpp).
+void write_simplex_demo(DemoRun& demo);
 
 }  // namespace volspline::cli

@@ -104,6 +104,7 @@ void add_demo_command(CLI::App& app) {
     write_boundary_demo(demo);
     write_blend_demo(demo);  // Peters-Wittman blends, figures 1a-4c
     write_view_demo(demo);   // Lasser §IV: isoparametric surfaces, slices, cutaways, colouring
+    write_simplex_demo(demo);  // Hua-He-Qin Fig. 1
     demo.check_selection();
     if (!demo.selective()) {
       demo.gallery().write(*dir);
