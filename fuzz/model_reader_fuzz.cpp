@@ -50,6 +50,20 @@ void check_same(const volspline::SweptSolid& a, const volspline::SweptSolid& b) 
   check_same(std::vector<double>{a.frame_fit_error}, std::vector<double>{b.frame_fit_error}, "a frame fit error");
 }
 
+void check_same(const volspline::DmsSplineVolume& a, const volspline::DmsSplineVolume& b) {
+  if (a.degree() != b.degree() || a.sharing() != b.sharing()) mismatch("a simplex spline's degree or sharing");
+  if (a.domain().tetrahedra != b.domain().tetrahedra) mismatch("a tetrahedron");
+  if (a.attribute_names() != b.attribute_names()) mismatch("an attribute name");
+  std::vector<double> ka, kb;
+  for (const auto& k : a.knots().knots) ka.insert(ka.end(), {k.x(), k.y(), k.z()});
+  for (const auto& k : b.knots().knots) kb.insert(kb.end(), {k.x(), k.y(), k.z()});
+  check_same(ka, kb, "a knot of a cloud");
+  const Eigen::MatrixXd& ca = a.control_vectors();
+  const Eigen::MatrixXd& cb = b.control_vectors();
+  check_same(std::vector<double>(ca.data(), ca.data() + ca.size()), std::vector<double>(cb.data(), cb.data() + cb.size()),
+             "a control vector");
+}
+
 void check_same(const Model& a, const Model& b) {
   if (a.objects.size() != b.objects.size()) mismatch("the number of objects");
   if (a.metadata != b.metadata) mismatch("the metadata");

@@ -88,7 +88,8 @@ int automatic_lattice_subdivisions(const TetrahedralMesh& domain, double target_
       for (int b = a + 1; b < 4; ++b)
         longest = std::max(longest, (domain.points[static_cast<std::size_t>(t[static_cast<std::size_t>(a)])] -
                                      domain.points[static_cast<std::size_t>(t[static_cast<std::size_t>(b)])]).norm());
-  return std::clamp(static_cast<int>(std::ceil(longest / target)), 1, std::max(1, max_subdivisions));
+  const int most = std::max(1, max_subdivisions);
+  return static_cast<int>(std::clamp(std::ceil(longest / target), 1.0, static_cast<double>(most)));
 }
 
 }  // namespace volspline

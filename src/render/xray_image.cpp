@@ -128,8 +128,10 @@ XrayRenderer::XrayRenderer(const DmsSplineVolume& volume, const XrayOptions& opt
       const double px = width / 2.0 + sx * shorter / 2.0, py = height / 2.0 - sy * shorter / 2.0;
       x0 = std::min(x0, px), x1 = std::max(x1, px), y0 = std::min(y0, py), y1 = std::max(y1, py);
     }
-    return {std::max(0, static_cast<int>(std::floor(x0 - 1))), std::max(0, static_cast<int>(std::floor(y0 - 1))),
-            std::min(width - 1, static_cast<int>(std::ceil(x1 + 1))), std::min(height - 1, static_cast<int>(std::ceil(y1 + 1)))};
+    // Clamped as doubles first: a far point's pixel coordinate need not fit an int.
+    const auto pixel = [](double v, int limit) { return static_cast<int>(std::clamp(v, -1.0, static_cast<double>(limit))); };
+    return {std::max(0, pixel(std::floor(x0 - 1), width)), std::max(0, pixel(std::floor(y0 - 1), height)),
+            std::min(width - 1, pixel(std::ceil(x1 + 1), width)), std::min(height - 1, pixel(std::ceil(y1 + 1), height))};
   };
   std::vector<Eigen::Vector3d> knots;
   for (std::size_t t = 0; t < tets; ++t) {
