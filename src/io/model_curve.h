@@ -19,11 +19,4 @@ BSplineCurve read_model_curve(const nlohmann::json& object, const std::string& p
 /// indented by `indent`. \throw InvalidInput located at `path` for a degree model files cannot hold.
 std::string model_curve_json(const BSplineCurve& curve, const std::string& indent, const std::string& path);
 
-/// A number as model files write it: 17 significant digits, "-0.0" for negative zero.
-std::string model_number_text(double value);
-
-/// "[a, b, ...]" with numbers as model files write them (17 significant digits, "-0.0"), wrapped
-/// at 100 columns after `indent`.
-std::string model_numbers_json(const std::vector<double>& values, const std::string& indent);
-
 }  // namespace volspline

@@ -524,14 +524,6 @@ std::string model_curve_json(const BSplineCurve& curve, const std::string& inden
   return out.str();
 }
 
-std::string model_number_text(double value) { return number_text(value); }
-
-std::string model_numbers_json(const std::vector<double>& values, const std::string& indent) {
-  std::ostringstream out;
-  write_numbers(out, values.data(), values.size(), indent);
-  return out.str();
-}
-
 Model parse_model(std::string_view text, const std::string& source_name) {
   try {
     return read_document(parse_json_document(text));

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model_curve.h"
+#include "model_json_support.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/strict_json.h"
@@ -185,7 +186,14 @@ SkeletonField read_document(const json& root) {
   return SkeletonField(std::move(read));
 }
 
-std::string point_text(const Eigen::Vector3d& p) { return model_numbers_json({p[0], p[1], p[2]}, ""); }
+// Numbers as model files write them (io/model_json_support.h).
+std::string numbers_json(const std::vector<double>& values, const std::string& indent) {
+  std::ostringstream out;
+  model_json::write_numbers(out, values.data(), values.size(), indent);
+  return out.str();
+}
+
+std::string point_text(const Eigen::Vector3d& p) { return numbers_json({p[0], p[1], p[2]}, ""); }
 
 std::string json_string(const std::string& text, const std::string& path) {
   try {
@@ -221,13 +229,13 @@ void write_element(std::ostringstream& out, const SkeletonElement& element, cons
       }
       break;
   }
-  out << indent << "\"weight\": " << model_number_text(element.weight) << ",\n";
+  out << indent << "\"weight\": " << model_json::number_text(element.weight) << ",\n";
   const SkeletonFalloff& falloff = element.falloff;
   if (falloff.kind == SkeletonFalloff::Kind::InverseSquare) {
-    out << indent << "\"falloff\": {\"kind\": \"inverse_square\", \"scale\": " << model_number_text(falloff.scale) << "}\n";
+    out << indent << "\"falloff\": {\"kind\": \"inverse_square\", \"scale\": " << model_json::number_text(falloff.scale) << "}\n";
   } else {
-    out << indent << "\"falloff\": {\"kind\": \"polynomial\", \"coefficients\": " << model_numbers_json(falloff.coefficients, indent)
-        << ", \"radius\": " << model_number_text(falloff.radius) << "}\n";
+    out << indent << "\"falloff\": {\"kind\": \"polynomial\", \"coefficients\": " << numbers_json(falloff.coefficients, indent)
+        << ", \"radius\": " << model_json::number_text(falloff.radius) << "}\n";
   }
   out << "    }";
 }
