@@ -7,13 +7,12 @@
 #include <utility>
 
 #include "volspline/core/bernstein_tensor.h"
+#include "unit_roundoff.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
 
 namespace {
-
-constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;
 
 // Higham's gamma_k = k u / (1 - k u): the relative error of k chained roundings.
 double gamma(double k) { return k * kUnitRoundoff / (1 - k * kUnitRoundoff); }

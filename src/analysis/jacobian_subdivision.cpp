@@ -6,14 +6,13 @@
 #include <string>
 
 #include "volspline/analysis/cone_bounds.h"
+#include "unit_roundoff.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/bezier_extraction.h"
 
 namespace volspline {
 
 namespace {
-
-constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;
 
 // The control vectors of the partial derivative of the geometry along `directions` (one or two
 // local derivatives), as 3-vectors.

@@ -10,22 +10,23 @@
 
 namespace volspline::detail {
 
-namespace {
-
 // The value, the first partial derivatives (columns) and, for order 2, the Hessian of every
-// component, from evaluate_derivatives (derivative_multi_indices order).
+// component, from evaluate_derivatives (derivative_multi_indices order). Outside the anonymous
+// namespace: the lambdas of newton_in_domain (external linkage) capture one.
 template <int D>
-struct Jet {
+struct DomainNewtonJet {
   Eigen::Vector3d value;
   Eigen::Matrix<double, 3, D> jacobian;
   std::array<Eigen::Matrix<double, D, D>, 3> hessian;
 };
 
+namespace {
+
 template <int D>
-Jet<D> evaluate_jet(const TensorSpline<D>& s, const std::array<double, D>& p, int order = 1) {
+DomainNewtonJet<D> evaluate_jet(const TensorSpline<D>& s, const std::array<double, D>& p, int order = 1) {
   double numbers[3 * (1 + D + D * (D + 1) / 2)];
   s.evaluate_derivatives(p, order, numbers);
-  Jet<D> jet;
+  DomainNewtonJet<D> jet;
   jet.value = Eigen::Map<const Eigen::Vector3d>(numbers);
   jet.jacobian = Eigen::Map<const Eigen::Matrix<double, 3, D>>(numbers + 3);
   if (order < 2) return jet;
@@ -100,7 +101,7 @@ DomainNewtonResult<D> newton_in_domain(const TensorSpline<D>& s, const Eigen::Ve
 
   DomainNewtonResult<D> best;
   best.parameter = clamp_into_domain(start);
-  Jet<D> jet = evaluate_jet<D>(s, best.parameter);
+  DomainNewtonJet<D> jet = evaluate_jet<D>(s, best.parameter);
   best.value = jet.value;
   best.residual = (x - jet.value).norm();
   int evaluations = 1;
@@ -115,7 +116,7 @@ DomainNewtonResult<D> newton_in_domain(const TensorSpline<D>& s, const Eigen::Ve
       moved = moved || trial[d] != before;
     }
     if (!moved) return false;
-    const Jet<D> trial_jet = evaluate_jet<D>(s, trial);
+    const DomainNewtonJet<D> trial_jet = evaluate_jet<D>(s, trial);
     ++evaluations;
     const double trial_residual = (x - trial_jet.value).norm();
     if (!(trial_residual < best.residual)) return false;
@@ -164,7 +165,7 @@ DomainNewtonResult<D> newton_in_domain(const TensorSpline<D>& s, const Eigen::Ve
   // method on |s - x|^2 / 2 with the full Hessian J^T J - sum_c r_c Hess(s_c), which is positive
   // along that valley, finishes the approach in a few steps.
   for (int polish = 0; polish < 8 && best.residual > tolerance; ++polish) {
-    const Jet<D> second = evaluate_jet<D>(s, best.parameter, 2);
+    const DomainNewtonJet<D> second = evaluate_jet<D>(s, best.parameter, 2);
     ++evaluations;
     const Eigen::Vector3d r = x - second.value;
     const Eigen::Matrix<double, D, 1> descent = second.jacobian.transpose() * r;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "newton_in_domain.h"
+#include "unit_roundoff.h"
 #include "volspline/core/error.h"
 #include "volspline/spline/bezier_extraction.h"
 #include "volspline/spline/degree_elevation.h"
@@ -16,7 +17,6 @@ namespace volspline {
 
 namespace {
 
-constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // A query tries Newton again in a cell once its box is this fraction of the box where the
 // previous try in its line of ancestors started: a few tries per halving of the cells' size

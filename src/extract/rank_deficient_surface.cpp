@@ -14,6 +14,7 @@
 
 #include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/analysis/sub_jacobians.h"
+#include "volspline/core/elapsed_time.h"
 #include "volspline/core/error.h"
 #include "volspline/mesh/parts.h"
 #include "volspline/spline/bezier_extraction.h"
@@ -23,7 +24,6 @@ namespace volspline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 constexpr int kMaxFinestLevel = 12;
 // Bits per lattice coordinate of a grid vertex key: four of them and a 4-bit edge direction fill

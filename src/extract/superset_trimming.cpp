@@ -28,6 +28,7 @@
 #include <CGAL/intersections.h>
 #include <tbb/parallel_for.h>
 
+#include "volspline/core/elapsed_time.h"
 #include "volspline/core/error.h"
 #include "volspline/mesh/mesh_checks.h"
 
@@ -46,7 +47,6 @@ using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
 using ExactPoint = Exact::Point_3;
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // The soup cut along all mutual intersections of its triangles: every face lies in one input
 // triangle (`origin`), faces meet only along shared edges and at shared corners, and the edges

@@ -10,6 +10,7 @@
 #include "volspline/analysis/jacobian_bezier.h"
 #include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/analysis/point_in_image.h"
+#include "volspline/core/elapsed_time.h"
 #include "volspline/core/error.h"
 #include "volspline/extract/face_tessellation.h"
 #include "volspline/extract/rank_deficient_surface.h"
@@ -21,7 +22,6 @@ namespace volspline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 using Parameter4 = std::array<double, 4>;
 

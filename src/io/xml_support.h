@@ -26,8 +26,15 @@ class Locator {
         ++count;
         if (s == n) index = count;
       }
-      if (count > 1) part += "[" + std::to_string(index) + "]";
-      path = "/" + part + path;
+      // Appending, not operator+(const char*, std::string&&): GCC 12 gives a false -Wrestrict on
+      // the latter (GCC bug 105329) where a unity build inlines this function.
+      if (count > 1) {
+        part += '[';
+        part += std::to_string(index);
+        part += ']';
+      }
+      part.insert(part.begin(), '/');
+      path.insert(0, part);
     }
     const std::ptrdiff_t offset = node.offset_debug();
     if (offset < 0) return path;

@@ -7,28 +7,15 @@
 
 #include <numeric>
 
+#include "support/test_meshes.h"
 #include "volspline/boxspline/zero_set.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
 namespace {
 
-/// Connected components (triangles sharing a vertex) and the Euler characteristic V − E + F.
-std::pair<int, long> components_and_euler(const TriangleMesh& mesh) {
-  std::vector<int> parent(mesh.num_vertices());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int v) {
-    while (parent[static_cast<std::size_t>(v)] != v)
-      v = parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
-    return v;
-  };
-  for (const auto& t : mesh.triangles)
-    for (int k = 1; k < 3; ++k) parent[static_cast<std::size_t>(find(t[k]))] = find(t[0]);
-  int components = 0;
-  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) components += find(static_cast<int>(v)) == static_cast<int>(v);
-  const EdgeStatistics e = edge_statistics(mesh);
-  return {components, static_cast<long>(mesh.num_vertices()) - static_cast<long>(e.edges) + static_cast<long>(mesh.num_triangles())};
-}
+using test_support::components_and_euler;
+
 
 TEST(BlendExamples, EveryClosedFigureIsClosedAndOutwardOriented) {
   const std::vector<BlendFigure> figures = paper_blend_figures();

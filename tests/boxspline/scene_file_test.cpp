@@ -11,7 +11,7 @@
 namespace volspline {
 namespace {
 
-std::string error_of(const std::string& text) {
+std::string scene_error_of(const std::string& text) {
   try {
     parse_scene(text, "scene.json");
   } catch (const InvalidInput& e) {
@@ -55,33 +55,33 @@ TEST(SceneFile, PrimitivesAndPlacement) {
 }
 
 TEST(SceneFile, ErrorsNameFilePathAndExpectation) {
-  EXPECT_EQ(error_of(scene_with_root(R"({"cube": {"size": 1}})")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"cube": {"size": 1}})")),
             "scene.json: root.cube: unknown node \"cube\": expected one of sphere, ellipsoid, cylinder, cone, torus, plane, "
             "union, intersection, difference, blend or place");
-  EXPECT_EQ(error_of(scene_with_root(R"({"union": [{"sphere": {"center": [0, 0, 0], "radius": 1}}, {"sphere": {"center": [0, 0, 0], "radius": -2}}]})")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"union": [{"sphere": {"center": [0, 0, 0], "radius": 1}}, {"sphere": {"center": [0, 0, 0], "radius": -2}}]})")),
             "scene.json: root.union[1].sphere.radius: expected a positive radius, got -2");
-  EXPECT_EQ(error_of(scene_with_root(R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", "0")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", "0")),
             "scene.json: spacing: expected a positive lattice spacing, got 0");
-  EXPECT_EQ(error_of(scene_with_root(R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", "-0.1")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", "-0.1")),
             "scene.json: spacing: expected a positive lattice spacing, got -0.1");
-  EXPECT_EQ(error_of(scene_with_root(R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", "0.5",
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", "0.5",
                                      R"({"min": [0, 0, 0], "max": [1, 0, 1]})")),
             "scene.json: box: expected a nonempty box, max > min in every coordinate, got min 0 and max 0 in coordinate 1");
-  EXPECT_EQ(error_of(scene_with_root(R"({"sphere": {"center": [0, 0], "radius": 1}})")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"sphere": {"center": [0, 0], "radius": 1}})")),
             "scene.json: root.sphere.center: expected the centre (an array of 3 numbers), got an array of 2 elements");
-  EXPECT_EQ(error_of(scene_with_root(R"({"difference": [{"sphere": {"center": [0, 0, 0], "radius": 1}}]})")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"difference": [{"sphere": {"center": [0, 0, 0], "radius": 1}}]})")),
             "scene.json: root.difference: expected an array of exactly 2 nodes, got an array of 1 element");
-  EXPECT_EQ(error_of(scene_with_root(R"({"cone": {"apex": [0, 0, 0], "axis": [0, 0, 1], "half_angle_deg": 90}})")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"cone": {"apex": [0, 0, 0], "axis": [0, 0, 1], "half_angle_deg": 90}})")),
             "scene.json: root.cone.half_angle_deg: expected a half angle strictly between 0 and 90 degrees, got 90");
-  EXPECT_EQ(error_of(scene_with_root(R"({"torus": {"center": [0, 0, 0], "axis": [0, 0, 0], "major": 1, "minor": 0.2}})")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"torus": {"center": [0, 0, 0], "axis": [0, 0, 0], "major": 1, "minor": 0.2}})")),
             "scene.json: root.torus.axis: expected a nonzero axis direction, got an array of 3 elements");
-  EXPECT_EQ(error_of(scene_with_root(R"({"blend": {"radius": 0.1, "of": [], "x": 1}})")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"blend": {"radius": 0.1, "of": [], "x": 1}})")),
             "scene.json: root.blend.x: unknown key \"x\": expected one of radius, of");
-  EXPECT_EQ(error_of(scene_with_root(R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", "1e-4")),
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", "1e-4")),
             "scene.json: spacing: expected a spacing that gives at most 4000000 lattice points over the box, got about "
             "1001500750125 (use a larger spacing or a smaller box)");
-  EXPECT_EQ(error_of(R"({"volspline_scene": 2})"), "scene.json: volspline_scene: expected the scene format version 1, got 2");
-  EXPECT_EQ(error_of("{\"volspline_scene\": 1,\n  \"spacing\": }"), "scene.json: line 2, column 14: invalid JSON: syntax error while parsing value - unexpected '}'; expected '[', '{', or a literal");
+  EXPECT_EQ(scene_error_of(R"({"volspline_scene": 2})"), "scene.json: volspline_scene: expected the scene format version 1, got 2");
+  EXPECT_EQ(scene_error_of("{\"volspline_scene\": 1,\n  \"spacing\": }"), "scene.json: line 2, column 14: invalid JSON: syntax error while parsing value - unexpected '}'; expected '[', '{', or a literal");
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <numeric>
 #include <numbers>
 
+#include "support/test_meshes.h"
 #include "volspline/boxspline/blend_examples.h"
 #include "volspline/boxspline/lattice_isosurface.h"
 #include "volspline/core/error.h"
@@ -18,6 +19,8 @@
 
 namespace volspline {
 namespace {
+
+using test_support::components_and_euler;
 
 SceneNode sphere_node(const Eigen::Vector3d& c, double r) {
   SceneNode n;
@@ -36,21 +39,6 @@ Scene sphere_scene(double h) {
   return s;
 }
 
-/// Connected components of the triangles (sharing a vertex) and the Euler characteristic V − E + F.
-std::pair<int, long> components_and_euler(const TriangleMesh& mesh) {
-  std::vector<int> parent(mesh.num_vertices());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int v) {
-    while (parent[static_cast<std::size_t>(v)] != v) v = parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
-    return v;
-  };
-  for (const auto& t : mesh.triangles)
-    for (int k = 1; k < 3; ++k) parent[static_cast<std::size_t>(find(t[k]))] = find(t[0]);
-  int components = 0;
-  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) components += find(static_cast<int>(v)) == static_cast<int>(v);
-  const EdgeStatistics e = edge_statistics(mesh);
-  return {components, static_cast<long>(mesh.num_vertices()) - static_cast<long>(e.edges) + static_cast<long>(mesh.num_triangles())};
-}
 
 TEST(MarchTetrahedra, PlaneIsExactAndSphereClosed) {
   // A linear function is reproduced exactly by the piecewise linear interpolant.

@@ -9,22 +9,17 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
+#include "support/test_splines.h"
 #include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
 namespace {
 
+using test_support::at;
+
 using Eigen::Vector3d;
 
-Vector3d at(const BSplineSurface& s, double u, double v) {
-  const auto x = s.evaluate({u, v});
-  return {x[0], x[1], x[2]};
-}
-Vector3d at(const BSplineVolume& s, double u, double v, double w) {
-  const auto x = s.evaluate({u, v, w});
-  return {x[0], x[1], x[2]};
-}
 
 // det(V_u, V_v, V_w) from the first derivatives (derivative_multi_indices order: value, u, v, w).
 double jacobian(const BSplineVolume& v, double a, double b, double c) {

@@ -16,22 +16,12 @@
 namespace volspline {
 namespace {
 
+using test_support::at;
+
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using test_support::random_spline;
 
-Vector3d at(const BSplineCurve& c, double t) {
-  const auto x = c.evaluate({t});
-  return {x[0], x[1], x[2]};
-}
-Vector3d at(const BSplineSurface& s, double u, double v) {
-  const auto x = s.evaluate({u, v});
-  return {x[0], x[1], x[2]};
-}
-Vector3d at(const BSplineVolume& s, double u, double v, double w) {
-  const auto x = s.evaluate({u, v, w});
-  return {x[0], x[1], x[2]};
-}
 
 // The same curve with its knots mapped affinely onto [a, b], so that curves made independently
 // share one parameter domain.

@@ -18,12 +18,13 @@
 namespace volspline {
 namespace {
 
+using test_support::at;
+
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using test_support::random_parameter;
 using test_support::random_spline;
 
-Vector3d at(const BSplineCurve& c, double t) { return c.evaluate({t}).head<3>(); }
 Vector3d derivative_at(const BSplineCurve& c, double t) {
   const auto d = c.evaluate_derivatives({t}, 1);
   return {d[3], d[4], d[5]};

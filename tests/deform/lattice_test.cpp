@@ -13,7 +13,7 @@
 namespace volspline {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
+std::string lattice_error_of(const std::function<void()>& f) {
   try {
     f();
   } catch (const InvalidInput& e) {
@@ -45,7 +45,7 @@ TEST(Lattice, MarginAndDirections) {
   // A flat set of points gets a solid box from the margin, and none without it.
   const std::vector<Eigen::Vector3d> flat{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   EXPECT_GT(undeformed_lattice(flat, {1, 1, 1}).axes.determinant(), 0);
-  EXPECT_NE(error_of([&] { undeformed_lattice(flat, {1, 1, 1}, {1, 1, 1}, 0.0); }).find("no extent along W"), std::string::npos);
+  EXPECT_NE(lattice_error_of([&] { undeformed_lattice(flat, {1, 1, 1}, {1, 1, 1}, 0.0); }).find("no extent along W"), std::string::npos);
   EXPECT_THROW(undeformed_lattice(std::vector<Eigen::Vector3d>{}, {1, 1, 1}), InvalidInput);
   EXPECT_THROW(undeformed_lattice(cube, {0, 1, 1}), InvalidInput);
   EXPECT_THROW(undeformed_lattice(cube, {1, 1, 1}, {1, 0, 1}), InvalidInput);
@@ -75,7 +75,7 @@ TEST(Lattice, ModelErrorsNameFileAndPath) {
   auto with = [&](const std::function<void(Model&)>& change) {
     Model m = good;
     change(m);
-    return error_of([&] { lattice_from_model(m, "lattice.json"); });
+    return lattice_error_of([&] { lattice_from_model(m, "lattice.json"); });
   };
   EXPECT_EQ(with([](Model& m) { m.objects[0].metadata["lattice"]["axes"][2] = {1.0, 1.0, 0.0};
                                 m.objects[0].metadata["lattice"]["axes"][0] = {1.0, 0.0, 0.0};

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "support/jacobian_test_volumes.h"
+#include "support/test_splines.h"
 #include "volspline/construct/primitives.h"
 #include "volspline/mesh/parts.h"
 #include "volspline/core/error.h"
@@ -15,6 +16,8 @@
 
 namespace volspline {
 namespace {
+
+using test_support::on_domain_boundary;
 
 using test_support::fold_s;
 using test_support::fold_volume;
@@ -27,11 +30,6 @@ double mesh_area(const TriangleMesh& mesh) {
   return area;
 }
 
-bool on_domain_boundary(const BSplineVolume& v, const Eigen::Vector3d& t) {
-  for (int d = 0; d < 3; ++d)
-    if (t[d] == v.domain_min(d) || t[d] == v.domain_max(d)) return true;
-  return false;
-}
 
 // Every slice vertex lies in its plane and is the image of its own parameters, which lie in the
 // domain (the requirement, 1e-12).

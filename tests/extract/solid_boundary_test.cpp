@@ -6,6 +6,7 @@
 #include <random>
 
 #include "support/jacobian_test_volumes.h"
+#include "support/test_splines.h"
 #include "volspline/construct/example_solids.h"
 #include "volspline/construct/paper_examples.h"
 #include "volspline/construct/primitives.h"
@@ -15,15 +16,11 @@
 namespace volspline {
 namespace {
 
+using test_support::on_domain_boundary;
+
 using test_support::fold_s;
 using test_support::jacobian_at;
 
-bool on_domain_boundary(const BSplineVolume& v, const Eigen::Vector3d& t) {
-  for (int d = 0; d < 3; ++d) {
-    if (t[d] == v.domain_min(d) || t[d] == v.domain_max(d)) return true;
-  }
-  return false;
-}
 
 // Joy–Duchaineau §7: no cracks. Every edge of the implicit surface is shared by exactly two of
 // its triangles, unless both its ends lie on the boundary of the domain.

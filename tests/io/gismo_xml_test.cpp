@@ -222,7 +222,7 @@ TEST(GismoXml, AZeroWeightCoefficientHasNoInfluenceAsInGismo) {
   }
 }
 
-std::string error_of(const std::string& text) {
+std::string gismo_error_of(const std::string& text) {
   try {
     parse_gismo_xml(text, "bad.xml");
   } catch (const InvalidInput& e) {
@@ -250,30 +250,30 @@ std::string edited(const std::string& from, const std::string& to) {
 }
 
 TEST(GismoXml, BadFilesSayWhereAndWhat) {
-  EXPECT_EQ(error_of(kGood), "no error");
-  EXPECT_EQ(error_of(std::string(kGood).substr(0, 200)).rfind("bad.xml: line ", 0), 0u);
-  EXPECT_NE(error_of(std::string(kGood).substr(0, 200)).find("invalid XML"), std::string::npos);
-  EXPECT_EQ(error_of(edited(R"(<KnotVector degree="1">0 0 1 1</KnotVector></Basis>
+  EXPECT_EQ(gismo_error_of(kGood), "no error");
+  EXPECT_EQ(gismo_error_of(std::string(kGood).substr(0, 200)).rfind("bad.xml: line ", 0), 0u);
+  EXPECT_NE(gismo_error_of(std::string(kGood).substr(0, 200)).find("invalid XML"), std::string::npos);
+  EXPECT_EQ(gismo_error_of(edited(R"(<KnotVector degree="1">0 0 1 1</KnotVector></Basis>
   </Basis>)", "</Basis></Basis>")),
             "bad.xml: line 6, /xml/Geometry/Basis/Basis[2]: missing element <KnotVector> (the knot vector of this direction)");
-  EXPECT_EQ(error_of(edited("0 0 1 0 0 1 1 1", "0 0 1 0 0 1 1")),
+  EXPECT_EQ(gismo_error_of(edited("0 0 1 0 0 1 1 1", "0 0 1 0 0 1 1")),
             "bad.xml: line 8, /xml/Geometry/coefs: expected 8 numbers (4 coefficients (2 x 2 from the knot vectors) with geoDim 2 "
             "each), got 7");
-  EXPECT_EQ(error_of(edited("0 0 1 0 0 1 1 1", "0 0 1 0 0 1 1 x")),
+  EXPECT_EQ(gismo_error_of(edited("0 0 1 0 0 1 1 1", "0 0 1 0 0 1 1 x")),
             "bad.xml: line 8, /xml/Geometry/coefs: expected a finite number, got 'x'");
-  EXPECT_EQ(error_of(edited(R"(degree="1">0 0 1 1</KnotVector></Basis>
+  EXPECT_EQ(gismo_error_of(edited(R"(degree="1">0 0 1 1</KnotVector></Basis>
   </Basis>)", R"(degree="1">0 1 0 1</KnotVector></Basis>
   </Basis>)")).rfind("bad.xml: line 6, /xml/Geometry/Basis/Basis[2]/KnotVector: knots must not decrease", 0), 0u);
-  EXPECT_EQ(error_of(edited(R"(degree="1">0 0 1 1</KnotVector></Basis>
+  EXPECT_EQ(gismo_error_of(edited(R"(degree="1">0 0 1 1</KnotVector></Basis>
   </Basis>)", R"(degree="3">0 0 1 1</KnotVector></Basis>
   </Basis>)")),
             "bad.xml: line 6, /xml/Geometry/Basis/Basis[2]/KnotVector: a knot vector of degree 3 needs at least 8 knots, got 4");
-  EXPECT_EQ(error_of(edited("TensorBSpline2\" id", "THBSpline2\" id")).rfind("bad.xml: line 3, /xml/Geometry: expected a geometry of type BSpline", 0), 0u);
-  EXPECT_EQ(error_of(edited("geoDim=\"2\"", "")), "bad.xml: line 8, /xml/Geometry/coefs: missing attribute geoDim (an integer from 1)");
-  EXPECT_EQ(error_of("<nope/>"), "bad.xml: line 1, /nope: expected the root element <xml> of a G+Smo file, got <nope>");
-  EXPECT_EQ(error_of(edited("</xml>", R"(<MultiPatch parDim="2"><patches type="id_range">3 4</patches></MultiPatch></xml>)")),
+  EXPECT_EQ(gismo_error_of(edited("TensorBSpline2\" id", "THBSpline2\" id")).rfind("bad.xml: line 3, /xml/Geometry: expected a geometry of type BSpline", 0), 0u);
+  EXPECT_EQ(gismo_error_of(edited("geoDim=\"2\"", "")), "bad.xml: line 8, /xml/Geometry/coefs: missing attribute geoDim (an integer from 1)");
+  EXPECT_EQ(gismo_error_of("<nope/>"), "bad.xml: line 1, /nope: expected the root element <xml> of a G+Smo file, got <nope>");
+  EXPECT_EQ(gismo_error_of(edited("</xml>", R"(<MultiPatch parDim="2"><patches type="id_range">3 4</patches></MultiPatch></xml>)")),
             "bad.xml: line 10, /xml/MultiPatch/patches: the range 3..4 names more patches than the 1 geometries of the file");
-  EXPECT_EQ(error_of(edited("</xml>", R"(<MultiPatch parDim="2"><patches type="id_index">4</patches></MultiPatch></xml>)")),
+  EXPECT_EQ(gismo_error_of(edited("</xml>", R"(<MultiPatch parDim="2"><patches type="id_index">4</patches></MultiPatch></xml>)")),
             "bad.xml: line 10, /xml/MultiPatch/patches: patch id 4 is not the id of any <Geometry>");
 }
 

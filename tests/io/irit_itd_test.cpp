@@ -85,7 +85,7 @@ TEST(IritItd, PointsAtInfinitySurviveAsWeightZeroHomogeneousPoints) {
   EXPECT_EQ(std::get<BSplineVolume>(back.objects[0].spline).homogeneous(), std::get<BSplineVolume>(model.objects[0].spline).homogeneous());
 }
 
-std::string error_of(const std::string& text) {
+std::string irit_error_of(const std::string& text) {
   try {
     parse_irit_itd(text, "bad.itd");
   } catch (const InvalidInput& e) {
@@ -96,11 +96,11 @@ std::string error_of(const std::string& text) {
 
 TEST(IritItd, BadTokensNameFileLineAndExpectation) {
   const std::string good = "[OBJECT C\n[CURVE BSPLINE 2 2 E2\n[KV 0 0 1 1]\n[0 0]\n[1 1]\n]\n]\n";
-  EXPECT_EQ(error_of(good), "no error");
+  EXPECT_EQ(irit_error_of(good), "no error");
   const auto edit = [&](const std::string& from, const std::string& to) {
     std::string text = good;
     text.replace(text.find(from), from.size(), to);
-    return error_of(text);
+    return irit_error_of(text);
   };
   EXPECT_EQ(edit("2 2 E2", "2 x E2"), "bad.itd: line 2: expected the order (degree + 1, from 2 to 65) in u, got 'x'");
   EXPECT_EQ(edit("E2", "Q2"), "bad.itd: line 2: expected the point type E1..E9 or P1..P9, got 'Q2'");
@@ -109,17 +109,17 @@ TEST(IritItd, BadTokensNameFileLineAndExpectation) {
   EXPECT_EQ(edit("[KV 0 0 1 1]", "[KV 0 1 0 1]"), "bad.itd: line 3: knots must not decrease: 0 follows 1 (knot [2] of u)");
   EXPECT_EQ(edit("[1 1]", "[1 1 1]"), "bad.itd: line 5: expected ']' closing control point 1 after its 2 numbers (point type E2), got '1'");
   EXPECT_EQ(edit("[1 1]", "[1 nan]"), "bad.itd: line 5: expected a coordinate (a finite number) of control point 1 (2 numbers for E2), got 'nan'");
-  EXPECT_EQ(error_of(good.substr(0, good.size() - 4)), "bad.itd: line 6: expected ']' closing the CURVE after its 2 control points, got the end of the file");
+  EXPECT_EQ(irit_error_of(good.substr(0, good.size() - 4)), "bad.itd: line 6: expected ']' closing the CURVE after its 2 control points, got the end of the file");
   EXPECT_EQ(edit("CURVE BSPLINE", "POLYGON BSPLINE"),
             "bad.itd: line 2: expected OBJECT, CURVE, SURFACE or TRIVAR (only B-spline and Bezier curves, surfaces and trivariates are read), got 'POLYGON'");
   EXPECT_EQ(edit("2 2 E2", "2 3 E2"), "bad.itd: line 2: expected an order of at most the number of control points (2), got '3'");
   EXPECT_EQ(edit("[CURVE BSPLINE 2 2 E2", "[CURVE BSPLINE 200000 2 E2"),
             "bad.itd: line 3: expected the 200002 knots of u (count 200000 + order 2), not 4 then, got ']'");
-  EXPECT_EQ(error_of("\n[TRIVAR BEZIER 50 50 50 E1 [0] [1]]"), "bad.itd: line 2: the header asks for more control points than the file holds");
-  EXPECT_EQ(error_of("# nothing\n"), "bad.itd: line 2: expected at least one [CURVE ...], [SURFACE ...] or [TRIVAR ...], got none");
+  EXPECT_EQ(irit_error_of("\n[TRIVAR BEZIER 50 50 50 E1 [0] [1]]"), "bad.itd: line 2: the header asks for more control points than the file holds");
+  EXPECT_EQ(irit_error_of("# nothing\n"), "bad.itd: line 2: expected at least one [CURVE ...], [SURFACE ...] or [TRIVAR ...], got none");
   EXPECT_EQ(edit("[1 1]", "[1 -1 1]").rfind("bad.itd", 0), 0u);
   // Negative weights: the homogeneous point (w, w x) with w < 0.
-  EXPECT_EQ(error_of("[CURVE BSPLINE 2 2 P1\n[KV 0 0 1 1]\n[1 0]\n[-1 1]\n]"), "bad.itd: line 4: a homogeneous weight is negative: -1 (weights[1])");
+  EXPECT_EQ(irit_error_of("[CURVE BSPLINE 2 2 P1\n[KV 0 0 1 1]\n[1 0]\n[-1 1]\n]"), "bad.itd: line 4: a homogeneous weight is negative: -1 (weights[1])");
 }
 
 TEST(IritItd, MoreThanNineCoordinatesCannotBeWritten) {

@@ -103,7 +103,7 @@ double random_finite(std::mt19937_64& rng) {
 }
 
 /// Parses `text` as "model.json" and returns the InvalidInput's what(); fails if it parses.
-std::string error_of(const std::string& text) {
+std::string model_error_of(const std::string& text) {
   try {
     parse_model(text, "model.json");
   } catch (const InvalidInput& e) {
@@ -137,7 +137,7 @@ template <typename Change>
 std::string error_after(Change change, const std::string& path) {
   json doc = valid_document();
   change(doc);
-  const std::string what = error_of(doc.dump());
+  const std::string what = model_error_of(doc.dump());
   const std::string prefix = path.empty() ? "model.json: " : "model.json: " + path + ": ";
   EXPECT_EQ(what.rfind(prefix, 0), 0u) << "expected the prefix '" << prefix << "' in: " << what;
   return what;
@@ -309,18 +309,18 @@ TEST(ModelFile, WritingAnInvalidModelThrows) {
 // Errors: file name, exact JSON path, what was expected and what was found.
 
 TEST(ModelFileErrors, InvalidJsonGivesLineAndColumn) {
-  const std::string what = error_of("{\n  \"volspline\": 1,\n  \"objects\": [}\n");
+  const std::string what = model_error_of("{\n  \"volspline\": 1,\n  \"objects\": [}\n");
   EXPECT_EQ(what.rfind("model.json: line 3, column 15: invalid JSON: ", 0), 0u) << what;
-  EXPECT_CONTAINS(error_of(""), "model.json: line 1, column 1: invalid JSON");
-  EXPECT_CONTAINS(error_of("{\"volspline\": 1} x"), "model.json: line 1, column 18: invalid JSON");
-  EXPECT_CONTAINS(error_of("{\"volspline\": 1,\n\n \"objects\": tru}"), "model.json: line 3, column 16: invalid JSON");
-  EXPECT_CONTAINS(error_of("{\"a\": \"\xff\"}"), "model.json: line 1, column 8: invalid JSON");
-  EXPECT_CONTAINS(error_of("// comment\n{}"), "model.json: line 1, column 1: invalid JSON");
-  EXPECT_CONTAINS(error_of("[1, 2,]"), "line 1, column 7");
+  EXPECT_CONTAINS(model_error_of(""), "model.json: line 1, column 1: invalid JSON");
+  EXPECT_CONTAINS(model_error_of("{\"volspline\": 1} x"), "model.json: line 1, column 18: invalid JSON");
+  EXPECT_CONTAINS(model_error_of("{\"volspline\": 1,\n\n \"objects\": tru}"), "model.json: line 3, column 16: invalid JSON");
+  EXPECT_CONTAINS(model_error_of("{\"a\": \"\xff\"}"), "model.json: line 1, column 8: invalid JSON");
+  EXPECT_CONTAINS(model_error_of("// comment\n{}"), "model.json: line 1, column 1: invalid JSON");
+  EXPECT_CONTAINS(model_error_of("[1, 2,]"), "line 1, column 7");
 }
 
 TEST(ModelFileErrors, TopLevel) {
-  EXPECT_CONTAINS(error_of("[1, 2]"), "model.json: expected a JSON object with the keys \"volspline\" and \"objects\", got an array of 2 elements");
+  EXPECT_CONTAINS(model_error_of("[1, 2]"), "model.json: expected a JSON object with the keys \"volspline\" and \"objects\", got an array of 2 elements");
   error_after([](json& d) { d.erase("volspline"); }, "");
   EXPECT_CONTAINS(error_after([](json& d) { d.erase("volspline"); }, ""), "missing key \"volspline\"");
   EXPECT_CONTAINS(error_after([](json& d) { d["volspline"] = 2; }, "volspline"),
@@ -387,7 +387,7 @@ TEST(ModelFileErrors, HugeDegreesAndCountsAllocateNothing) {
   EXPECT_CONTAINS(error_after([](json& d) { d["objects"][1]["degree"][1] = 64; }, "objects[1].knots[1]"),
                   "a knot vector of degree 64 needs at least 130 knots, got 4");
   // Bézier degrees are checked against the number of control points before knots are made.
-  EXPECT_CONTAINS(error_of(R"({"volspline": 1, "objects": [{"type": "bezier_volume", "degree": [64, 64, 64],
+  EXPECT_CONTAINS(model_error_of(R"({"volspline": 1, "objects": [{"type": "bezier_volume", "degree": [64, 64, 64],
                                "control_points": [[0], [1]]}]})"),
                   "model.json: objects[0].control_points: expected 274625 control points (65 x 65 x 65 from the degrees), got 2");
   // Control-point grids beyond any int are reported, not multiplied out.
@@ -464,12 +464,12 @@ TEST(ModelFileErrors, NumbersBeyondDoubleAreNotFinite) {
     t.replace(t.find(from), from.size(), to);
     return t;
   };
-  EXPECT_CONTAINS(error_of(replace("[3,1]", "[3,1e999]")),
+  EXPECT_CONTAINS(model_error_of(replace("[3,1]", "[3,1e999]")),
                   "model.json: objects[0].control_points[3][1]: expected a finite number, got 1e999");
-  EXPECT_CONTAINS(error_of(replace("[0,0,0,0.5", "[0,0,-1E+400,0.5")), "model.json: objects[0].knots[0][2]: expected a finite number, got -1E+400");
-  EXPECT_CONTAINS(error_of(replace("[1,0.5,2", "[1,1e309,2")), "model.json: objects[0].weights[1]: expected a finite number");
+  EXPECT_CONTAINS(model_error_of(replace("[0,0,0,0.5", "[0,0,-1E+400,0.5")), "model.json: objects[0].knots[0][2]: expected a finite number, got -1E+400");
+  EXPECT_CONTAINS(model_error_of(replace("[1,0.5,2", "[1,1e309,2")), "model.json: objects[0].weights[1]: expected a finite number");
   // In metadata too: the reader never holds an infinity.
-  EXPECT_CONTAINS(error_of(replace("\"volspline\":1", "\"metadata\": {\"x\": [0, 2e400]}, \"volspline\":1")),
+  EXPECT_CONTAINS(model_error_of(replace("\"volspline\":1", "\"metadata\": {\"x\": [0, 2e400]}, \"volspline\":1")),
                   "model.json: metadata.x[1]: expected a finite number");
   // Underflow is not an error: 1e-400 reads as 0.
   const Model model = parse_model(replace("[3,1]", "[3,1e-400]"), "model.json");
@@ -495,21 +495,21 @@ TEST(ModelFileErrors, Weights) {
 }
 
 TEST(ModelFileErrors, DuplicateKeys) {
-  EXPECT_CONTAINS(error_of(R"({"volspline": 1, "volspline": 1, "objects": []})"),
+  EXPECT_CONTAINS(model_error_of(R"({"volspline": 1, "volspline": 1, "objects": []})"),
                   "model.json: volspline: duplicate key \"volspline\"");
-  EXPECT_CONTAINS(error_of(R"({"volspline": 1, "objects": [{"type": "bezier_curve", "degree": [1], "degree": [2],
+  EXPECT_CONTAINS(model_error_of(R"({"volspline": 1, "objects": [{"type": "bezier_curve", "degree": [1], "degree": [2],
                                "control_points": [[0], [1]]}]})"),
                   "model.json: objects[0].degree: duplicate key \"degree\"");
-  EXPECT_CONTAINS(error_of(R"({"volspline": 1, "metadata": {"a": [{"b": 1, "b": 2}]}, "objects": []})"),
+  EXPECT_CONTAINS(model_error_of(R"({"volspline": 1, "metadata": {"a": [{"b": 1, "b": 2}]}, "objects": []})"),
                   "model.json: metadata.a[0].b: duplicate key \"b\"");
 }
 
 TEST(ModelFileErrors, DeepNestingIsRejectedWithoutRecursion) {
   std::string deep = R"({"volspline": 1, "metadata": {"x": )" + std::string(100000, '[') + std::string(100000, ']') +
                      R"(}, "objects": []})";
-  EXPECT_CONTAINS(error_of(deep), "model.json: metadata.x[0][0]");
-  EXPECT_CONTAINS(error_of(deep), "levels of nested arrays and objects");
-  EXPECT_CONTAINS(error_of(std::string(1000000, '[')), "model.json: [0][0][0]");
+  EXPECT_CONTAINS(model_error_of(deep), "model.json: metadata.x[0][0]");
+  EXPECT_CONTAINS(model_error_of(deep), "levels of nested arrays and objects");
+  EXPECT_CONTAINS(model_error_of(std::string(1000000, '[')), "model.json: [0][0][0]");
   // 60 levels of metadata are fine and survive a round trip.
   std::string ok = R"({"volspline": 1, "metadata": {"x": )" + std::string(60, '[') + std::string(60, ']') +
                    R"(}, "objects": [{"type": "bezier_curve", "degree": [1], "control_points": [[0], [1]]}]})";
@@ -624,7 +624,7 @@ json swept_document(json frame) {
 }
 
 std::string error_in(const json& doc, const std::string& path) {
-  const std::string what = error_of(doc.dump());
+  const std::string what = model_error_of(doc.dump());
   EXPECT_EQ(what.rfind("model.json: " + path + ": ", 0), 0u) << what;
   return what;
 }
@@ -654,7 +654,7 @@ TEST(ModelFileSweptSolids, HypervolumesRoundTripBitExact) {
   round_trip(bezier);
   json bad = doc;
   bad["objects"][0]["degree"] = {1, 1, 1};
-  EXPECT_CONTAINS(error_of(bad.dump()), "objects[0].degree: expected an array of 4 integers");
+  EXPECT_CONTAINS(model_error_of(bad.dump()), "objects[0].degree: expected an array of 4 integers");
 }
 
 TEST(ModelFileSweptSolids, EveryFrameKindReadsAndRoundTripsBitExact) {

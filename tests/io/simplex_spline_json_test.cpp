@@ -53,7 +53,7 @@ TEST(SimplexSplineJson, RoundTripsBitForBit) {
 }
 
 // The message and location of the error parse_model gives for the model with one change.
-std::string error_of(const std::function<void(json&)>& change) {
+std::string simplex_json_error_of(const std::function<void(json&)>& change) {
   json doc = json::parse(model_to_json(simplex_model(DmsControlSharing::Shared, 2)));
   change(doc["objects"][0]);
   try {
@@ -65,24 +65,24 @@ std::string error_of(const std::function<void(json&)>& change) {
 }
 
 TEST(SimplexSplineJson, ErrorsNameTheJsonPath) {
-  EXPECT_NE(error_of([](json& o) { o["degree"] = 6; }).find("m.json: objects[0].degree: expected an integer from 0 to 5"), std::string::npos);
-  EXPECT_NE(error_of([](json& o) { o.erase("knot_clouds"); }).find("objects[0]: missing key \"knot_clouds\""), std::string::npos);
-  EXPECT_NE(error_of([](json& o) { o["tetrahedra"][2][1] = 1000; }).find("objects[0].tetrahedra[2][1]: expected a point index"), std::string::npos);
-  EXPECT_NE(error_of([](json& o) { std::swap(o["tetrahedra"][3][0], o["tetrahedra"][3][1]); }).find("objects[0].tetrahedra[3]"),
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["degree"] = 6; }).find("m.json: objects[0].degree: expected an integer from 0 to 5"), std::string::npos);
+  EXPECT_NE(simplex_json_error_of([](json& o) { o.erase("knot_clouds"); }).find("objects[0]: missing key \"knot_clouds\""), std::string::npos);
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["tetrahedra"][2][1] = 1000; }).find("objects[0].tetrahedra[2][1]: expected a point index"), std::string::npos);
+  EXPECT_NE(simplex_json_error_of([](json& o) { std::swap(o["tetrahedra"][3][0], o["tetrahedra"][3][1]); }).find("objects[0].tetrahedra[3]"),
             std::string::npos);
-  EXPECT_NE(error_of([](json& o) { o["knot_clouds"][4].erase(0); }).find("objects[0].knot_clouds[4]: expected an array of 2 sub-knots"),
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["knot_clouds"][4].erase(0); }).find("objects[0].knot_clouds[4]: expected an array of 2 sub-knots"),
             std::string::npos);
-  EXPECT_NE(error_of([](json& o) { o["control_points"].erase(0); }).find("objects[0].control_points: expected an array of"),
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["control_points"].erase(0); }).find("objects[0].control_points: expected an array of"),
             std::string::npos);
-  EXPECT_NE(error_of([](json& o) { o["control_points"][3][1] = "a"; }).find("objects[0].control_points[3][1]: expected a number"),
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["control_points"][3][1] = "a"; }).find("objects[0].control_points[3][1]: expected a number"),
             std::string::npos);
-  EXPECT_NE(error_of([](json& o) { o["attributes"]["density"].erase(0); }).find("objects[0].attributes.density: expected an array of"),
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["attributes"]["density"].erase(0); }).find("objects[0].attributes.density: expected an array of"),
             std::string::npos);
-  EXPECT_NE(error_of([](json& o) { o["attributes"]["x"] = o["attributes"]["density"]; }).find("objects[0].attributes"), std::string::npos);
-  EXPECT_NE(error_of([](json& o) { o["control"] = "both"; }).find("objects[0].control: expected \"shared\""), std::string::npos);
-  EXPECT_NE(error_of([](json& o) { o["colour"] = 1; }).find("objects[0].colour: unknown key"), std::string::npos);
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["attributes"]["x"] = o["attributes"]["density"]; }).find("objects[0].attributes"), std::string::npos);
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["control"] = "both"; }).find("objects[0].control: expected \"shared\""), std::string::npos);
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["colour"] = 1; }).find("objects[0].colour: unknown key"), std::string::npos);
   // A boundary vertex's sub-knot moved inside Ω (§3.2 wants it outside).
-  EXPECT_NE(error_of([](json& o) { o["knot_clouds"][0][0] = json::array({0.01, 0.01, 0.01}); }).find("objects[0].tetrahedra["),
+  EXPECT_NE(simplex_json_error_of([](json& o) { o["knot_clouds"][0][0] = json::array({0.01, 0.01, 0.01}); }).find("objects[0].tetrahedra["),
             std::string::npos);
 }
 

@@ -234,7 +234,7 @@ TEST(VtuFile, OurReaderGivesBackEveryCellAndItsAttributes) {
   EXPECT_LT(worst, 1e-12);
 }
 
-std::string error_of(const std::string& text) {
+std::string vtu_error_of(const std::string& text) {
   try {
     parse_vtu(text, "bad.vtu");
   } catch (const InvalidInput& e) {
@@ -254,21 +254,21 @@ TEST(VtuFile, WrongPointCountsAndOtherBadFilesSayWhere) {
   const std::vector<double> points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
   const BSplineVolume cube({KnotVector::bezier(1), KnotVector::bezier(1), KnotVector::bezier(1)}, 3, points);
   const std::string good = vtu_text(Model{{ModelObject{"", false, cube, nullptr}}, nullptr});
-  EXPECT_EQ(error_of(good), "no error");
-  EXPECT_EQ(error_of(replaced(good, "NumberOfPoints=\"8\"", "NumberOfPoints=\"7\"")),
+  EXPECT_EQ(vtu_error_of(good), "no error");
+  EXPECT_EQ(vtu_error_of(replaced(good, "NumberOfPoints=\"8\"", "NumberOfPoints=\"7\"")),
             "bad.vtu: line 20, /VTKFile/UnstructuredGrid/Piece/Points/DataArray: expected 21 numbers (3 per point, NumberOfPoints = 7), got 24");
-  EXPECT_EQ(error_of(replaced(good, "          8 \n", "          7 \n")),
+  EXPECT_EQ(vtu_error_of(replaced(good, "          8 \n", "          7 \n")),
             "bad.vtu: line 25, /VTKFile/UnstructuredGrid/Piece/Cells/DataArray[1]: expected 7 integers (the last offset), got 8");
-  EXPECT_EQ(error_of(replaced(good, "Name=\"HigherOrderDegrees\" NumberOfComponents=\"3\" format=\"ascii\">\n          1 1 1",
+  EXPECT_EQ(vtu_error_of(replaced(good, "Name=\"HigherOrderDegrees\" NumberOfComponents=\"3\" format=\"ascii\">\n          1 1 1",
                                      "Name=\"HigherOrderDegrees\" NumberOfComponents=\"3\" format=\"ascii\">\n          1 1 2")),
             "bad.vtu: line 28, /VTKFile/UnstructuredGrid/Piece/Cells/DataArray[2]: cell 0 has 8 points, expected 12 for degrees 1 1 2 "
             "(a Bezier cell of degree >= 1 with prod (degree + 1) points)");
-  EXPECT_EQ(error_of(replaced(good, "          79 \n", "          12 \n")),
+  EXPECT_EQ(vtu_error_of(replaced(good, "          79 \n", "          12 \n")),
             "bad.vtu: line 31, /VTKFile/UnstructuredGrid/Piece/Cells/DataArray[3]: cell 0 has type 12: expected a Bezier curve (75), "
             "quadrilateral (77) or hexahedron (79)");
-  EXPECT_EQ(error_of(replaced(good, "version=\"2.2\"", "version=\"1.0\"")).rfind("bad.vtu: line 3, /VTKFile: expected version 2.2 or later", 0), 0u);
-  EXPECT_NE(error_of(good.substr(0, good.size() / 2)).find("invalid XML"), std::string::npos);
-  EXPECT_EQ(error_of(replaced(good, "Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\"", "Name=\"Points\" NumberOfComponents=\"3\" format=\"binary\"")).find("binary and appended data are not read") != std::string::npos, true);
+  EXPECT_EQ(vtu_error_of(replaced(good, "version=\"2.2\"", "version=\"1.0\"")).rfind("bad.vtu: line 3, /VTKFile: expected version 2.2 or later", 0), 0u);
+  EXPECT_NE(vtu_error_of(good.substr(0, good.size() / 2)).find("invalid XML"), std::string::npos);
+  EXPECT_EQ(vtu_error_of(replaced(good, "Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\"", "Name=\"Points\" NumberOfComponents=\"3\" format=\"binary\"")).find("binary and appended data are not read") != std::string::npos, true);
 }
 
 TEST(VtuFile, SplinesBeyondThreeCoordinatesAreRefused) {

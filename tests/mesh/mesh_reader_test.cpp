@@ -21,7 +21,7 @@
 namespace volspline {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
+std::string mesh_error_of(const std::function<void()>& f) {
   try {
     f();
   } catch (const InvalidInput& e) {
@@ -128,15 +128,15 @@ TEST(MeshReader, HandWrittenObj) {
 TEST(MeshReader, ObjErrorsNameFileAndLine) {
   std::string text;
   for (int i = 0; i < 10; ++i) text += "v 0 0 " + std::to_string(i) + "\n";
-  EXPECT_EQ(error_of([&] { parse_obj(text + "\nf 1 2 40\n", "model.obj"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_obj(text + "\nf 1 2 40\n", "model.obj"); }),
             "model.obj: line 12: face index 40 out of range (the file has 10 vertices)");
-  EXPECT_EQ(error_of([&] { parse_obj(text + "f 1 2\n", "model.obj"); }), "model.obj: line 11: a face needs at least 3 vertices, got 2");
-  EXPECT_EQ(error_of([&] { parse_obj(text + "f 1 0 2\n", "model.obj"); }), "model.obj: line 11: face index 0 (OBJ indices start at 1)");
-  EXPECT_EQ(error_of([&] { parse_obj(text + "f 1 2 -11\n", "model.obj"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_obj(text + "f 1 2\n", "model.obj"); }), "model.obj: line 11: a face needs at least 3 vertices, got 2");
+  EXPECT_EQ(mesh_error_of([&] { parse_obj(text + "f 1 0 2\n", "model.obj"); }), "model.obj: line 11: face index 0 (OBJ indices start at 1)");
+  EXPECT_EQ(mesh_error_of([&] { parse_obj(text + "f 1 2 -11\n", "model.obj"); }),
             "model.obj: line 11: relative face index -11 reaches before the first vertex (10 vertices so far)");
-  EXPECT_EQ(error_of([&] { parse_obj("v 1 nan 2\n", "model.obj"); }), "model.obj: line 1: expected a finite number, got 'nan'");
-  EXPECT_EQ(error_of([&] { parse_obj("v 1 2\n", "model.obj"); }), "model.obj: line 1: expected three coordinates after 'v'");
-  EXPECT_EQ(error_of([&] { parse_obj("v 1 2 3\nf 1 1 x\n", "model.obj"); }), "model.obj: line 2: expected a vertex index, got 'x'");
+  EXPECT_EQ(mesh_error_of([&] { parse_obj("v 1 nan 2\n", "model.obj"); }), "model.obj: line 1: expected a finite number, got 'nan'");
+  EXPECT_EQ(mesh_error_of([&] { parse_obj("v 1 2\n", "model.obj"); }), "model.obj: line 1: expected three coordinates after 'v'");
+  EXPECT_EQ(mesh_error_of([&] { parse_obj("v 1 2 3\nf 1 1 x\n", "model.obj"); }), "model.obj: line 2: expected a vertex index, got 'x'");
   // Forward references are resolved at the end of the file.
   EXPECT_EQ(parse_obj("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", "f.obj").num_triangles(), 1u);
 }
@@ -199,30 +199,30 @@ TEST(MeshReader, HandWrittenAsciiPlyWithIntegerCoordinatesAndNoParts) {
 TEST(MeshReader, PlyErrorsNamePlaceAndNeverTrustCounts) {
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                              "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  EXPECT_EQ(error_of([&] { parse_ply(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 40\n", "m.ply"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_ply(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 40\n", "m.ply"); }),
             "m.ply: line 13 (face 0): vertex index 40 out of range (the file has 3 vertices)");
-  EXPECT_EQ(error_of([&] { parse_ply(header + "0 0 0\n1 0 x\n", "m.ply"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_ply(header + "0 0 0\n1 0 x\n", "m.ply"); }),
             "m.ply: line 11 (vertex 1): expected a finite number, got 'x'");
-  EXPECT_EQ(error_of([&] { parse_ply(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "m.ply"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_ply(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "m.ply"); }),
             "m.ply: line 13 (face 0): unexpected end of file");
-  EXPECT_EQ(error_of([&] { parse_ply("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n", "m.ply"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_ply("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n", "m.ply"); }),
             "m.ply: line 3: element vertex has no scalar property y");
-  EXPECT_EQ(error_of([&] { parse_ply("PLY\n", "m.ply"); }), "m.ply: line 1: not a PLY file (the first line must be 'ply')");
-  EXPECT_EQ(error_of([&] { parse_ply("ply\nformat ascii 1.0\n", "m.ply"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_ply("PLY\n", "m.ply"); }), "m.ply: line 1: not a PLY file (the first line must be 'ply')");
+  EXPECT_EQ(mesh_error_of([&] { parse_ply("ply\nformat ascii 1.0\n", "m.ply"); }),
             "m.ply: line 3: unexpected end of file in the header (no end_header)");
   // A binary file claiming 10^8 vertices in 48 bytes is rejected before anything is allocated.
   const std::string huge = "ply\nformat binary_little_endian 1.0\nelement vertex 100000000\nproperty double x\n"
                            "property double y\nproperty double z\nend_header\n" + std::string(48, '\0');
-  EXPECT_NE(error_of([&] { parse_ply(huge, "m.ply"); }).find("m.ply: line 3: element vertex declares 100000000 items"), std::string::npos);
+  EXPECT_NE(mesh_error_of([&] { parse_ply(huge, "m.ply"); }).find("m.ply: line 3: element vertex declares 100000000 items"), std::string::npos);
   // A list length that the remaining bytes cannot hold.
   std::string binary = ply_bytes(test_support::unit_tetrahedron());
   const std::size_t face_start = binary.size() - 4 * 17;
   binary[face_start] = static_cast<char>(250);
-  EXPECT_EQ(error_of([&] { parse_ply(binary, "t.ply"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_ply(binary, "t.ply"); }),
             "t.ply: byte " + std::to_string(face_start + 1) + " (face 0): unexpected end of file: a list of 250 values does not fit");
   // Truncated binary data names the byte offset.
   const std::string whole = ply_bytes(test_support::unit_tetrahedron());
-  EXPECT_NE(error_of([&] { parse_ply(whole.substr(0, whole.size() - 3), "t.ply"); }).find("t.ply: byte "), std::string::npos);
+  EXPECT_NE(mesh_error_of([&] { parse_ply(whole.substr(0, whole.size() - 3), "t.ply"); }).find("t.ply: byte "), std::string::npos);
 }
 
 TEST(MeshReader, AsciiStlWithSeveralSolids) {
@@ -233,18 +233,18 @@ TEST(MeshReader, AsciiStlWithSeveralSolids) {
   const TriangleMesh mesh = parse_stl(text, "two.stl");
   EXPECT_EQ(mesh.num_vertices(), 4u);  // (0,0,0) and (1,1,0) shared; -0 welds with 0
   EXPECT_EQ(mesh.triangles, (std::vector<std::array<int, 3>>{{0, 1, 2}, {0, 2, 3}}));
-  EXPECT_EQ(error_of([&] { parse_stl("solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0\n", "bad.stl"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_stl("solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0\n", "bad.stl"); }),
             "bad.stl: line 4: unexpected end of file, expected a number");
-  EXPECT_EQ(error_of([&] { parse_stl("solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n endloop\n", "bad.stl"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_stl("solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n endloop\n", "bad.stl"); }),
             "bad.stl: line 5: a facet needs at least 3 vertices, got 1");
 }
 
 TEST(MeshReader, BinaryStlCountsAreCheckedAgainstTheSize) {
   std::string bytes = stl_bytes(test_support::unit_cube());
   EXPECT_EQ(parse_stl(bytes, "c.stl").num_vertices(), 8u);
-  EXPECT_EQ(error_of([&] { parse_stl(bytes.substr(0, bytes.size() - 1), "c.stl"); }),
+  EXPECT_EQ(mesh_error_of([&] { parse_stl(bytes.substr(0, bytes.size() - 1), "c.stl"); }),
             "c.stl: byte 80: the header declares 12 triangles (684 bytes), the file has only 683 bytes");
-  EXPECT_EQ(error_of([&] { parse_stl("abc", "c.stl"); }), "c.stl: byte 3: a binary STL file needs an 84-byte header, the file has 3 bytes");
+  EXPECT_EQ(mesh_error_of([&] { parse_stl("abc", "c.stl"); }), "c.stl: byte 3: a binary STL file needs an 84-byte header, the file has 3 bytes");
   // A binary file whose header begins with "solid" is still read as binary when its size fits.
   bytes.replace(0, 5, "solid");
   EXPECT_EQ(parse_stl(bytes, "c.stl").num_triangles(), 12u);

@@ -13,14 +13,16 @@
 #include <random>
 #include <vector>
 
+#include "support/simplex_domains.h"
 #include "volspline/core/error.h"
 #include "volspline/simplex/simplex_spline.h"
 
 namespace volspline {
 namespace {
 
+using test_support::factorial;
+using test_support::kInfinity;
 using Eigen::Vector3d;
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Knot clouds of the tetrahedron (0, e_x, e_y, e_z) with sub-knots `spread` around each vertex.
 struct Clouds {
@@ -60,7 +62,6 @@ Vector3d random_point(std::mt19937& rng) {
   return Vector3d(u(rng), u(rng), u(rng));
 }
 
-double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
 
 TEST(DmsTetrahedronBasis, MultiIndicesFollowTheDocumentedOrder) {
   for (int n = 0; n <= kMaxSimplexSplineDegree; ++n) {

@@ -22,7 +22,7 @@ namespace volspline {
 namespace {
 
 // The volumes of degree 1..4, built once for all tests.
-const DmsSplineVolume& cube_volume(int degree) {
+const DmsSplineVolume& knot_test_volume(int degree) {
   static const std::array<DmsSplineVolume, 4> volumes = {
       test_support::cube_simplex_volume(1), test_support::cube_simplex_volume(2),
       test_support::cube_simplex_volume(3), test_support::cube_simplex_volume(4)};
@@ -54,7 +54,7 @@ Eigen::Vector3d beside(const Eigen::Vector3d& x) { return x + 1e-13 * Eigen::Vec
 
 TEST(SimplexSplineAtKnots, DmsBasisSumsToOneAndReproducesTheIdentity) {
   for (int degree = 1; degree <= 4; ++degree) {
-    const DmsSplineVolume& volume = cube_volume(degree);
+    const DmsSplineVolume& volume = knot_test_volume(degree);
     DmsSplineEvaluator evaluator(volume);
     double worst_sum = 0;
     double worst_identity = 0;
@@ -75,7 +75,7 @@ TEST(SimplexSplineAtKnots, DmsBasisSumsToOneAndReproducesTheIdentity) {
 
 TEST(SimplexSplineAtKnots, DmsBasisIsTheLimitFromThePerturbedSide) {
   for (int degree = 1; degree <= 4; ++degree) {
-    const DmsSplineVolume& volume = cube_volume(degree);
+    const DmsSplineVolume& volume = knot_test_volume(degree);
     DmsSplineEvaluator evaluator(volume);
     double worst = 0;
     for (const Eigen::Vector3d& x : knot_points(volume)) {
@@ -115,7 +115,7 @@ double largest_difference_from_reference(DmsTetrahedronBasis& basis, const std::
 TEST(SimplexSplineAtKnots, CompiledPlanEqualsScaledReferenceSplines) {
   // Degrees 1..3: the unmemoised reference at degree 4 would take most of the suite's time here.
   for (int degree = 1; degree <= 3; ++degree) {
-    const DmsSplineVolume& volume = cube_volume(degree);
+    const DmsSplineVolume& volume = knot_test_volume(degree);
     const auto betas = dms_multi_indices(degree);
     DmsTetrahedronBasis basis(degree);
     double worst_at = 0;

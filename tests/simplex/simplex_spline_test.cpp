@@ -13,18 +13,18 @@
 #include <vector>
 
 #include "simplex/simplex_recurrence.h"
+#include "support/simplex_domains.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
 namespace {
 
+using test_support::factorial;
+using test_support::kInfinity;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 using Knots = std::vector<Vector3d>;
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
 
 Knots random_knots(std::mt19937& rng, int count) {
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -1,5 +1,6 @@
 #pragma once
 // Tetrahedral domains and DMS spline volumes that tests and benchmarks share (no GoogleTest).
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -8,6 +9,11 @@
 #include "volspline/simplex/knot_clouds.h"
 
 namespace volspline::test_support {
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// n! as a double (∫ M over R³ = n!/(n+3)!, Hua–He–Qin §3.1).
+inline double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
 
 /// The Delaunay tetrahedralisation of an n x n x n grid over [0, 1]^3 whose interior coordinates
 /// are jittered by up to `jitter` of a cell (the corners and the faces' coordinates stay put, so

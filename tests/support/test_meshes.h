@@ -4,12 +4,31 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <utility>
 #include <vector>
 
+#include "volspline/mesh/mesh_checks.h"
 #include "volspline/mesh/triangle_mesh.h"
 
 namespace volspline::test_support {
+
+/// Connected components (triangles sharing a vertex) and the Euler characteristic V − E + F.
+inline std::pair<int, long> components_and_euler(const TriangleMesh& mesh) {
+  std::vector<int> parent(mesh.num_vertices());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int v) {
+    while (parent[static_cast<std::size_t>(v)] != v)
+      v = parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+    return v;
+  };
+  for (const auto& t : mesh.triangles)
+    for (int k = 1; k < 3; ++k) parent[static_cast<std::size_t>(find(t[k]))] = find(t[0]);
+  int components = 0;
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) components += find(static_cast<int>(v)) == static_cast<int>(v);
+  const EdgeStatistics e = edge_statistics(mesh);
+  return {components, static_cast<long>(mesh.num_vertices()) - static_cast<long>(e.edges) + static_cast<long>(mesh.num_triangles())};
+}
 
 /// The corners of the quad faces of the unit cube [0, 1]^3 (vertex x + 2y + 4z), one per part
 /// 0..5 in the order u=min, u=max, v=min, v=max, w=min, w=max, counter-clockwise from outside.

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "volspline/spline/tensor_spline.h"
 
 namespace volspline::test_support {
@@ -77,6 +79,27 @@ double coefficient_scale(const TensorSpline<D>& s) {
   double m = 1.0;
   for (double x : s.points()) m = std::max(m, std::abs(x));
   return m;
+}
+
+/// The point of a curve, surface or volume with three or more coordinates (the first three).
+inline Eigen::Vector3d at(const BSplineCurve& c, double t) {
+  const auto x = c.evaluate({t});
+  return {x[0], x[1], x[2]};
+}
+inline Eigen::Vector3d at(const BSplineSurface& s, double u, double v) {
+  const auto x = s.evaluate({u, v});
+  return {x[0], x[1], x[2]};
+}
+inline Eigen::Vector3d at(const BSplineVolume& s, double u, double v, double w) {
+  const auto x = s.evaluate({u, v, w});
+  return {x[0], x[1], x[2]};
+}
+
+/// Parameters t on the boundary of v's domain (a coordinate equal to a domain end).
+inline bool on_domain_boundary(const BSplineVolume& v, const Eigen::Vector3d& t) {
+  for (int d = 0; d < 3; ++d)
+    if (t[d] == v.domain_min(d) || t[d] == v.domain_max(d)) return true;
+  return false;
 }
 
 }  // namespace volspline::test_support
