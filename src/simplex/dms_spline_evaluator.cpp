@@ -235,13 +235,26 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
     support_candidates(at, scratch_->candidates);
     for (const int t : scratch_->candidates) {
       scratch_->basis.evaluate(at, index_->plans[static_cast<std::size_t>(t)], pass_order, scratch_->values);
+      // Plain loops over the control vector's entries: Eigen's products of a row of a dynamic
+      // matrix would evaluate into heap temporaries here, once per basis function.
+      const double* control_data = control.data();
+      const Eigen::Index stride = control.rows();
+      double* value_out = out.value.data();
       for (int b = 0; b < v.basis_per_tetrahedron(); ++b) {
         const double value = pass == 0 ? scratch_->values.values[static_cast<std::size_t>(b)] : 0.0;
-        const bool has_gradient = pass_order >= 1 && !scratch_->values.gradients[static_cast<std::size_t>(b)].isZero(0.0);
+        const Eigen::Vector3d* g = pass_order >= 1 ? &scratch_->values.gradients[static_cast<std::size_t>(b)] : nullptr;
+        const bool has_gradient = g != nullptr && (g->x() != 0 || g->y() != 0 || g->z() != 0);
         if (value == 0.0 && !has_gradient) continue;
-        const auto c = control.row(v.control_row(t, b));
-        if (value != 0.0) out.value += value * c.transpose();
-        if (has_gradient) out.gradient += c.transpose() * scratch_->values.gradients[static_cast<std::size_t>(b)].transpose();
+        const double* c = control_data + v.control_row(t, b);
+        for (int k = 0; k < dim; ++k) {
+          const double ck = c[k * stride];
+          value_out[k] += value * ck;
+          if (has_gradient) {
+            out.gradient(k, 0) += ck * g->x();
+            out.gradient(k, 1) += ck * g->y();
+            out.gradient(k, 2) += ck * g->z();
+          }
+        }
       }
     }
   }
