@@ -59,6 +59,29 @@ bool choose_dms_knots(const std::array<Eigen::Vector3d, kMaxRecurrenceKnots>& kn
   return fallback.choose(subset, nullptr, w, frame);
 }
 
+// clip_to_chord for [lo, hi] (finite, lo < hi): the parameters in [lo, hi] where every
+// λ_j + s·μ_j >= 0; false when there are none. Divides only for the j whose λ_j changes sign
+// within [lo, hi] (about two for a chord that crosses the tetrahedron, none for most that miss).
+bool clip_to_chord_within(const std::array<double, 4>& lambda, const std::array<double, 4>& mu, double& lo,
+                          double& hi) {
+  const double lower = lo;
+  const double upper = hi;
+  for (int j = 0; j < 4; ++j) {
+    const double at_lower = lambda[j] + lower * mu[j];
+    const double at_upper = lambda[j] + upper * mu[j];
+    if (at_lower < 0 && at_upper < 0) return false;
+    if (at_lower < 0 || at_upper < 0) {
+      const double crossing = -lambda[j] / mu[j];
+      if (mu[j] > 0) {
+        lo = std::max(lo, crossing);
+      } else {
+        hi = std::min(hi, crossing);
+      }
+    }
+  }
+  return lo < hi;
+}
+
 }  // namespace
 
 struct DmsRecurrencePlan::Builder {
@@ -362,8 +385,13 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
     }
     double s_lo = lower;
     double s_hi = upper;
-    clip_to_chord(lambda(i, d), lambda(i, e), s_lo, s_hi);
-    out[i] = s_hi > s_lo ? (s_hi - s_lo) * std::abs(f.inverse_det) : 0.0;
+    out[i] = clip_to_chord_within(lambda(i, d), lambda(i, e), s_lo, s_hi) ? (s_hi - s_lo) * std::abs(f.inverse_det) : 0.0;
+  }
+  // 1/(n + 1) and n/(n + 1) of eq. 16 per degree (a division per node would be the critical path).
+  std::array<double, kMaxSimplexSplineDegree + 1> inverse{}, ratio{};
+  for (int n = 1; n <= kMaxSimplexSplineDegree; ++n) {
+    inverse[static_cast<std::size_t>(n)] = 1.0 / (n + 1);
+    ratio[static_cast<std::size_t>(n)] = static_cast<double>(n) / (n + 1);
   }
   for (int i = leaf_count_; i < count; ++i) {
     const PlanNode& n = interior(i);
@@ -371,25 +399,26 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
       out[i] = flat_line_integral(knots_.data(), masks_[static_cast<std::size_t>(i)], o, direction, lower, upper);
       continue;
     }
-    // Eq. 16 about the middle of the chord of W's tetrahedron (recurrence_shift).
+    // Eq. 16 about a point of the line where every λ_j >= 0, so that the sum does not cancel: the
+    // middle of the chord of W's tetrahedron within [lower, upper], else recurrence_shift (the
+    // middle of the whole chord, or the point nearest W's centroid where the line misses W).
     const auto l0 = lambda(n.four, d);
     const auto m = lambda(n.four, e);
-    double lo = -std::numeric_limits<double>::infinity();
-    double hi = std::numeric_limits<double>::infinity();
-    clip_to_chord(l0, m, lo, hi);
+    double lo = lower;
+    double hi = upper;
     double shift;
-    if (lo < hi) {
+    if (clip_to_chord_within(l0, m, lo, hi)) {
       shift = 0.5 * (lo + hi);
     } else {
       const PlanFour& f = fours_[n.four];
       const Eigen::Vector3d centroid = 0.25 * (knots_[f.w[0]] + knots_[f.w[1]] + knots_[f.w[2]] + knots_[f.w[3]]);
-      shift = (centroid - o).dot(direction) / direction.squaredNorm();
+      shift = recurrence_shift(l0, m, centroid, o, direction, lower, upper);
     }
-    shift = std::clamp(shift, lower, upper);
     double sum = 0;
     for (int j = 0; j < 4; ++j) sum += (l0[j] + shift * m[j]) * out[n.child[j]];
     const double boundary = (upper - shift) * at_upper[i] - (lower - shift) * at_lower[i];
-    out[i] = (n.degree * sum + boundary) / (n.degree + 1);
+    const auto degree = static_cast<std::size_t>(n.degree);
+    out[i] = ratio[degree] * sum + inverse[degree] * boundary;
   }
 }
 
