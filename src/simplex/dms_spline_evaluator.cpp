@@ -44,10 +44,6 @@ struct DmsSplineEvaluator::Index {
   std::vector<std::array<Eigen::Vector4d, 4>> outer_planes;
   BoxGrid supports;
   BoxGrid tetrahedra;
-  // support_planes and domain_planes again in the cell order of the grids: a query reads one
-  // contiguous run instead of a cache miss per candidate.
-  std::vector<std::array<Eigen::Vector4d, 4>> support_planes_by_cell;
-  std::vector<std::array<Eigen::Vector4d, 4>> domain_planes_by_cell;
 };
 
 struct DmsSplineEvaluator::Scratch {
@@ -121,8 +117,6 @@ DmsSplineEvaluator::DmsSplineEvaluator(const DmsSplineVolume& volume)
   });
   index->supports = BoxGrid(support_boxes);
   index->tetrahedra = BoxGrid(tetrahedron_boxes);
-  for (const int t : index->supports.ids()) index->support_planes_by_cell.push_back(index->support_planes[static_cast<std::size_t>(t)]);
-  for (const int t : index->tetrahedra.ids()) index->domain_planes_by_cell.push_back(index->domain_planes[static_cast<std::size_t>(t)]);
   index_ = std::move(index);
 }
 
@@ -137,14 +131,13 @@ int DmsSplineEvaluator::locate(const Eigen::Vector3d& x, bool* clearly_inside_ou
   const TetrahedralMesh& domain = volume_->domain();
   // A point inside a tetrahedron by a clear margin lies in no other (the mesh is proper): the
   // floating-point face planes decide it; only points near a face need the exact predicates.
-  const auto [first, last] = index_->tetrahedra.query_positions(x);
-  for (int position = first; position < last; ++position) {
-    const std::array<Eigen::Vector4d, 4>& planes = index_->domain_planes_by_cell[static_cast<std::size_t>(position)];
+  for (const int t : index_->tetrahedra.query(x)) {
+    const std::array<Eigen::Vector4d, 4>& planes = index_->domain_planes[static_cast<std::size_t>(t)];
     bool clearly_inside = true;
     for (const Eigen::Vector4d& p : planes) clearly_inside = clearly_inside && p.head<3>().dot(x) < p[3];
     if (clearly_inside) {
       if (clearly_inside_out != nullptr) *clearly_inside_out = true;
-      return index_->tetrahedra.ids()[static_cast<std::size_t>(position)];
+      return t;
     }
   }
   if (clearly_inside_out != nullptr) *clearly_inside_out = false;
@@ -168,12 +161,11 @@ int DmsSplineEvaluator::locate(const Eigen::Vector3d& x, bool* clearly_inside_ou
 
 void DmsSplineEvaluator::support_candidates(const Eigen::Vector3d& x, std::vector<int>& out) const {
   out.clear();
-  const auto [first, last] = index_->supports.query_positions(x);
-  for (int position = first; position < last; ++position) {
-    const std::array<Eigen::Vector4d, 4>& planes = index_->support_planes_by_cell[static_cast<std::size_t>(position)];
+  for (const int t : index_->supports.query(x)) {
+    const std::array<Eigen::Vector4d, 4>& planes = index_->support_planes[static_cast<std::size_t>(t)];
     bool inside = true;
     for (const Eigen::Vector4d& p : planes) inside = inside && p.head<3>().dot(x) <= p[3];
-    if (inside) out.push_back(index_->supports.ids()[static_cast<std::size_t>(position)]);
+    if (inside) out.push_back(t);
   }
 }
 
