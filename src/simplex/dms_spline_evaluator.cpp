@@ -239,6 +239,7 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
     const Eigen::Vector3d& at = pass == 0 ? x : derivative_point;
     const int pass_order = derivative_point == x ? order : (pass == 0 ? 0 : 1);
     support_candidates(at, scratch_->candidates);
+    for (const int t : scratch_->candidates) index_->plans[static_cast<std::size_t>(t)].prefetch();
     for (const int t : scratch_->candidates) {
       scratch_->basis.evaluate(at, index_->plans[static_cast<std::size_t>(t)], pass_order, scratch_->values);
       // Plain loops over the control vector's entries: Eigen's products of a row of a dynamic

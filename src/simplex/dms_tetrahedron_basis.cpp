@@ -241,6 +241,10 @@ bool DmsTetrahedronPlan::matches(const std::array<const Eigen::Vector3d*, 4>& cl
   return plan_->matches(knots.data());
 }
 
+void DmsTetrahedronPlan::prefetch() const {
+  if (plan_) plan_->prefetch();
+}
+
 std::size_t DmsTetrahedronPlan::memory_bytes() const {
   return sizeof(*this) + (plan_ ? plan_->memory_bytes() : 0);
 }

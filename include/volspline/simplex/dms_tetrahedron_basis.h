@@ -55,6 +55,9 @@ class DmsTetrahedronPlan {
   /// Whether the plan was compiled from exactly these knot coordinates.
   bool matches(const std::array<const Eigen::Vector3d*, 4>& clouds) const;
   std::size_t memory_bytes() const;
+  /// A hint: starts loading the plan into the caches (for the next tetrahedra to be evaluated,
+  /// while others are).
+  void prefetch() const;
 
  private:
   friend class DmsTetrahedronBasis;
