@@ -399,6 +399,14 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
       out[i] = flat_line_integral(knots_.data(), masks_[static_cast<std::size_t>(i)], o, direction, lower, upper);
       continue;
     }
+    // Where the line misses every child's support it misses the subset's (eq. 1: M(V) vanishes
+    // where all M(V \ w_j) do), and with both ends outside it too the integral is 0 (the sum below
+    // would give exactly 0): no chord to compute.
+    if (out[n.child[0]] == 0 && out[n.child[1]] == 0 && out[n.child[2]] == 0 && out[n.child[3]] == 0 &&
+        at_upper[i] == 0 && at_lower[i] == 0) {
+      out[i] = 0;
+      continue;
+    }
     // Eq. 16 about a point of the line where every λ_j >= 0, so that the sum does not cancel: the
     // middle of the chord of W's tetrahedron within [lower, upper], else recurrence_shift (the
     // middle of the whole chord, or the point nearest W's centroid where the line misses W).
