@@ -188,13 +188,16 @@ void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const st
     return builder.face_knots[static_cast<std::size_t>(a)][0] < builder.face_knots[static_cast<std::size_t>(b)][0];
   });
   std::vector<int> face_number(face_count);
-  normals_.resize(face_count);
+  face_count_ = static_cast<int>(face_count);
+  normals_.resize(3 * face_count);
   face_begin_.assign(static_cast<std::size_t>(knot_count_) + 1, 0);
   for (std::size_t i = 0; i < face_count; ++i) {
     const auto& [a, b, c] = builder.face_knots[static_cast<std::size_t>(face_order[i])];
     face_number[static_cast<std::size_t>(face_order[i])] = static_cast<int>(i);
     const Eigen::Vector3d n = (knots_[b] - knots_[a]).cross(knots_[c] - knots_[a]);
-    normals_[i] = {n.x(), n.y(), n.z()};
+    normals_[i] = n.x();
+    normals_[face_count + i] = n.y();
+    normals_[2 * face_count + i] = n.z();
     ++face_begin_[static_cast<std::size_t>(a) + 1];
   }
   for (int k = 0; k < knot_count_; ++k) face_begin_[static_cast<std::size_t>(k) + 1] += face_begin_[static_cast<std::size_t>(k)];
@@ -239,7 +242,7 @@ void DmsRecurrencePlan::shrink_to_fit() {
 }
 
 std::size_t DmsRecurrencePlan::memory_bytes() const {
-  return sizeof(*this) + normals_.capacity() * sizeof(normals_[0]) + face_begin_.capacity() * sizeof(std::uint16_t) +
+  return sizeof(*this) + normals_.capacity() * sizeof(double) + face_begin_.capacity() * sizeof(std::uint16_t) +
          fours_.capacity() * sizeof(PlanFour) + interior_.capacity() * sizeof(PlanNode) +
          masks_.capacity() * sizeof(KnotMask) + tops_.capacity() * sizeof(int) + scales_.capacity() * sizeof(double);
 }
@@ -284,15 +287,18 @@ std::array<Eigen::Vector3d, 4> DmsRecurrencePlan::lambda_gradients(int i) const 
   const PlanFour& f = fours_[interior(i).four];
   std::array<Eigen::Vector3d, 4> g;
   for (int j = 0; j < 4; ++j) {
-    const auto& n = normals_[f.face[j]];
+    const std::size_t k = f.face[j];
+    const std::size_t stride = static_cast<std::size_t>(face_count_);
     const double s = (j % 2 == 0 ? -1.0 : 1.0) * f.inverse_det;
-    g[j] = Eigen::Vector3d(s * n[0], s * n[1], s * n[2]);
+    g[j] = Eigen::Vector3d(s * normals_[k], s * normals_[stride + k], s * normals_[2 * stride + k]);
   }
   return g;
 }
 
 void DmsRecurrencePlan::face_determinants(const Eigen::Vector3d& x, double* d) const {
-  const std::array<double, 3>* normal = normals_.data();
+  const double* nx = normals_.data();
+  const double* ny = nx + face_count_;
+  const double* nz = ny + face_count_;
   for (int k = 0; k < knot_count_; ++k) {
     const int end = face_begin_[static_cast<std::size_t>(k) + 1];
     int f = face_begin_[static_cast<std::size_t>(k)];
@@ -300,7 +306,7 @@ void DmsRecurrencePlan::face_determinants(const Eigen::Vector3d& x, double* d) c
     const double rx = x.x() - knots_[k].x();
     const double ry = x.y() - knots_[k].y();
     const double rz = x.z() - knots_[k].z();
-    for (; f < end; ++f) d[f] = normal[f][0] * rx + normal[f][1] * ry + normal[f][2] * rz;
+    for (; f < end; ++f) d[f] = nx[f] * rx + ny[f] * ry + nz[f] * rz;
   }
 }
 
@@ -374,8 +380,9 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
   double* e = work + face_count();
   face_determinants(o, d);
   for (int f = 0; f < face_count(); ++f) {
-    const auto& n = normals_[static_cast<std::size_t>(f)];
-    e[f] = n[0] * direction.x() + n[1] * direction.y() + n[2] * direction.z();
+    const auto k = static_cast<std::size_t>(f);
+    const auto stride = static_cast<std::size_t>(face_count_);
+    e[f] = normals_[k] * direction.x() + normals_[stride + k] * direction.y() + normals_[2 * stride + k] * direction.z();
   }
   for (int i = 0; i < leaf_count_; ++i) {
     const PlanFour& f = fours_[static_cast<std::size_t>(i)];

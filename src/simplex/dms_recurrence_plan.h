@@ -57,7 +57,7 @@ class DmsRecurrencePlan {
   /// children before parents.
   int size() const { return leaf_count_ + static_cast<int>(interior_.size()); }
   int leaf_count() const { return leaf_count_; }
-  int face_count() const { return static_cast<int>(normals_.size()); }
+  int face_count() const { return face_count_; }
   int four_count() const { return static_cast<int>(fours_.size()); }
   /// Doubles of scratch that values() and line_integrals() need besides their output.
   int work_size() const { return 2 * face_count(); }
@@ -90,7 +90,7 @@ class DmsRecurrencePlan {
     };
     lines(knots_.data(), static_cast<std::size_t>(knot_count_) * sizeof(Eigen::Vector3d));
     lines(face_begin_.data(), face_begin_.size() * sizeof(std::uint16_t));
-    lines(normals_.data(), normals_.size() * sizeof(normals_[0]));
+    lines(normals_.data(), normals_.size() * sizeof(double));
     lines(fours_.data(), fours_.size() * sizeof(PlanFour));
     lines(interior_.data(), interior_.size() * sizeof(PlanNode));
     lines(tops_.data(), tops_.size() * sizeof(int));
@@ -118,7 +118,10 @@ class DmsRecurrencePlan {
     return {-s * d[f.face[0]], s * d[f.face[1]], -s * d[f.face[2]], s * d[f.face[3]]};
   }
 
-  std::vector<std::array<double, 3>> normals_;  // per face, grouped by first knot
+  // Per face, grouped by first knot, by coordinate: x of every face, then y, then z (the dot
+  // products of one group then run over consecutive doubles).
+  std::vector<double> normals_;
+  int face_count_ = 0;
   std::vector<std::uint16_t> face_begin_;       // faces of first knot k: face_begin_[k]..[k+1]
   std::vector<PlanFour> fours_;                 // the leaves' fours first
   std::vector<PlanNode> interior_;
