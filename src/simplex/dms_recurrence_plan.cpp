@@ -338,9 +338,11 @@ void DmsRecurrencePlan::values(const Eigen::Vector3d& x, double* out, int knot, 
   double* interior_out = out + leaf_count_;
   for (const PlanNode& n : interior_) {
     double v = 0;
-    if (n.four != kFlatNode) {
+    const double c0 = out[n.child[0]], c1 = out[n.child[1]], c2 = out[n.child[2]], c3 = out[n.child[3]];
+    // All children 0 (x outside every child's support, the usual case far from a subset): 0.
+    if (n.four != kFlatNode && (c0 != 0 || c1 != 0 || c2 != 0 || c3 != 0)) {
       const auto l = lambda(n.four, d);
-      v = l[0] * out[n.child[0]] + l[1] * out[n.child[1]] + l[2] * out[n.child[2]] + l[3] * out[n.child[3]];
+      v = l[0] * c0 + l[1] * c1 + l[2] * c2 + l[3] * c3;
     }
     *interior_out++ = v;
   }
