@@ -49,12 +49,18 @@ std::span<const int> BoxGrid::cell(int i, int j, int k) const {
   return {ids_.data() + offsets_[c], static_cast<std::size_t>(offsets_[c + 1] - offsets_[c])};
 }
 
-std::span<const int> BoxGrid::query(const Eigen::Vector3d& x) const {
-  if (ids_.empty() || !bounds_.contains(x)) return {};
+std::pair<int, int> BoxGrid::query_positions(const Eigen::Vector3d& x) const {
+  if (ids_.empty() || !bounds_.contains(x)) return {0, 0};
   int index[3];
   for (int a = 0; a < 3; ++a)
     index[a] = std::clamp(static_cast<int>(std::floor((x[a] - bounds_.min()[a]) / cell_size_[a])), 0, cells_[a] - 1);
-  return cell(index[0], index[1], index[2]);
+  const std::size_t c = static_cast<std::size_t>(index[0] + cells_.x() * (index[1] + cells_.y() * index[2]));
+  return {offsets_[c], offsets_[c + 1]};
+}
+
+std::span<const int> BoxGrid::query(const Eigen::Vector3d& x) const {
+  const auto [first, last] = query_positions(x);
+  return {ids_.data() + first, static_cast<std::size_t>(last - first)};
 }
 
 }  // namespace volspline

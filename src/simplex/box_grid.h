@@ -3,6 +3,7 @@
 // basis functions of a DMS spline volume and the tetrahedra of its domain are found this way
 // (their boxes overlap a bounded number of cells, so a query costs O(1) for a reasonable mesh).
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -18,6 +19,11 @@ class BoxGrid {
   std::span<const int> query(const Eigen::Vector3d& x) const;
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
   const Eigen::Vector3i& cells() const { return cells_; }
+  /// The positions [first, last) of query(x) in ids(), for data kept in the grid's cell order
+  /// (read in sequence rather than scattered over the boxes).
+  std::pair<int, int> query_positions(const Eigen::Vector3d& x) const;
+  /// The box of every position, cell by cell.
+  const std::vector<int>& ids() const { return ids_; }
   /// The boxes of one cell (i, j, k), each index in range.
   std::span<const int> cell(int i, int j, int k) const;
 

@@ -59,7 +59,81 @@ bool choose_dms_knots(const std::array<Eigen::Vector3d, kMaxRecurrenceKnots>& kn
   return fallback.choose(subset, nullptr, w, frame);
 }
 
+// clip_to_chord for [lo, hi] (finite, lo < hi): the parameters in [lo, hi] where every
+// λ_j + s·μ_j >= 0; false when there are none. Divides only for the j whose λ_j changes sign
+// within [lo, hi] (about two for a chord that crosses the tetrahedron, none for most that miss).
+bool clip_to_chord_within(const std::array<double, 4>& lambda, const std::array<double, 4>& mu, double& lo,
+                          double& hi) {
+  const double lower = lo;
+  const double upper = hi;
+  for (int j = 0; j < 4; ++j) {
+    const double at_lower = lambda[j] + lower * mu[j];
+    const double at_upper = lambda[j] + upper * mu[j];
+    if (at_lower < 0 && at_upper < 0) return false;
+    if (at_lower < 0 || at_upper < 0) {
+      const double crossing = -lambda[j] / mu[j];
+      if (mu[j] > 0) {
+        lo = std::max(lo, crossing);
+      } else {
+        hi = std::min(hi, crossing);
+      }
+    }
+  }
+  return lo < hi;
+}
+
 }  // namespace
+
+struct DmsRecurrencePlan::Builder {
+  struct Four {
+    double inverse_det;
+    std::array<int, 4> face;
+    std::array<int, 4> w;
+  };
+  struct Interior {
+    std::array<int, 4> child;  // codes of add()
+    int four;                  // -1: flat
+    int degree;
+    KnotMask mask;
+  };
+  SubsetMemo& index;  // subset -> code
+  SubsetMemo faces;   // three-knot mask -> face
+  SubsetMemo fours;   // four-knot mask -> four
+  std::vector<std::array<int, 3>> face_knots;
+  std::vector<Four> four_list;
+  std::vector<int> leaf_four;
+  std::vector<KnotMask> leaf_masks;
+  std::vector<Interior> interior;
+
+  explicit Builder(SubsetMemo& subsets) : index(subsets) {}
+
+  int face_of(int a, int b, int c) {
+    const KnotMask mask = (KnotMask{1} << a) | (KnotMask{1} << b) | (KnotMask{1} << c);
+    if (const double* known = faces.find(mask)) return static_cast<int>(*known);
+    const int id = static_cast<int>(face_knots.size());
+    face_knots.push_back({a, b, c});
+    faces.store(mask, id);
+    return id;
+  }
+
+  // The four of knots w (any order), sorted; flat (inverse_det 0) where make_frame says so.
+  int four_of(std::array<int, 4> w, const std::array<Eigen::Vector3d, kMaxRecurrenceKnots>& knots) {
+    std::sort(w.begin(), w.end());
+    KnotMask mask = 0;
+    for (const int k : w) mask |= KnotMask{1} << k;
+    if (const double* known = fours.find(mask)) return static_cast<int>(*known);
+    Four four{};
+    four.w = w;
+    BarycentricFrame frame;
+    if (make_frame(knots[w[0]], knots[w[1]], knots[w[2]], knots[w[3]], frame)) four.inverse_det = 1.0 / frame.det;
+    four.face = {face_of(w[1], w[2], w[3]), face_of(w[0], w[2], w[3]), face_of(w[0], w[1], w[3]),
+                 face_of(w[0], w[1], w[2])};
+    const int id = static_cast<int>(four_list.size());
+    four_list.push_back(four);
+    fours.store(mask, id);
+    return id;
+  }
+};
 
 void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const std::vector<std::array<int, 4>>& betas,
                               SubsetMemo& index) {
@@ -86,26 +160,70 @@ void DmsRecurrencePlan::build(const Eigen::Vector3d* knots, int degree, const st
   binding.bind(knots_.data(), knot_count_, BarycentricChoice::kLargest, &vertices);
   index.reserve(expected_dms_subsets(degree));
   index.clear();
-  leaves_.clear();
-  interior_.clear();
-  tops_.clear();
+  Builder builder(index);
+  builder.faces.reserve(4 * expected_dms_subsets(degree));
+  builder.fours.reserve(2 * expected_dms_subsets(degree));
+  std::vector<int> top_codes;
   scales_.clear();
   for (const auto& beta : betas) {
     KnotMask mask = 0;
     for (int c = 0; c < 4; ++c) mask |= ((KnotMask{1} << (beta[c] + 1)) - 1) << (c * cloud_size);
-    tops_.push_back(add(mask, binding, index));
+    top_codes.push_back(add(mask, binding, builder));
     scales_.push_back(std::abs(oriented_det(knots_[beta[0]], knots_[cloud_size + beta[1]],
                                             knots_[2 * cloud_size + beta[2]], knots_[3 * cloud_size + beta[3]])));
   }
-  // Number leaves first, then the larger subsets (which already come children first).
-  const int leaf_count = this->leaf_count();
-  const auto number = [leaf_count](int code) { return code < 0 ? -1 - code : leaf_count + code; };
-  for (PlanNode& n : interior_) {
-    if (!n.flat) {
-      for (auto& c : n.child) c = number(c);
+  // Fours: the leaves' first (leaf i is four i), then the other W.
+  leaf_count_ = static_cast<int>(builder.leaf_four.size());
+  std::vector<int> four_number(builder.four_list.size(), -1);
+  for (int i = 0; i < leaf_count_; ++i) four_number[static_cast<std::size_t>(builder.leaf_four[static_cast<std::size_t>(i)])] = i;
+  int next_four = leaf_count_;
+  for (int& n : four_number) {
+    if (n < 0) n = next_four++;
+  }
+  // Faces grouped by their first knot.
+  const std::size_t face_count = builder.face_knots.size();
+  std::vector<int> face_order(face_count);
+  for (std::size_t f = 0; f < face_count; ++f) face_order[f] = static_cast<int>(f);
+  std::stable_sort(face_order.begin(), face_order.end(), [&](int a, int b) {
+    return builder.face_knots[static_cast<std::size_t>(a)][0] < builder.face_knots[static_cast<std::size_t>(b)][0];
+  });
+  std::vector<int> face_number(face_count);
+  face_count_ = static_cast<int>(face_count);
+  normals_.resize(3 * face_count);
+  face_begin_.assign(static_cast<std::size_t>(knot_count_) + 1, 0);
+  for (std::size_t i = 0; i < face_count; ++i) {
+    const auto& [a, b, c] = builder.face_knots[static_cast<std::size_t>(face_order[i])];
+    face_number[static_cast<std::size_t>(face_order[i])] = static_cast<int>(i);
+    const Eigen::Vector3d n = (knots_[b] - knots_[a]).cross(knots_[c] - knots_[a]);
+    normals_[i] = n.x();
+    normals_[face_count + i] = n.y();
+    normals_[2 * face_count + i] = n.z();
+    ++face_begin_[static_cast<std::size_t>(a) + 1];
+  }
+  for (int k = 0; k < knot_count_; ++k) face_begin_[static_cast<std::size_t>(k) + 1] += face_begin_[static_cast<std::size_t>(k)];
+  fours_.resize(builder.four_list.size());
+  for (std::size_t q = 0; q < builder.four_list.size(); ++q) {
+    const Builder::Four& f = builder.four_list[q];
+    PlanFour& out = fours_[static_cast<std::size_t>(four_number[q])];
+    out.inverse_det = f.inverse_det;
+    for (int j = 0; j < 4; ++j) {
+      out.face[j] = static_cast<std::uint16_t>(face_number[static_cast<std::size_t>(f.face[j])]);
+      out.w[j] = static_cast<std::int8_t>(f.w[j]);
     }
   }
-  for (int& t : tops_) t = number(t);
+  const auto number = [this](int code) { return code < 0 ? -1 - code : leaf_count_ + code; };
+  interior_.resize(builder.interior.size());
+  masks_ = builder.leaf_masks;
+  for (std::size_t i = 0; i < builder.interior.size(); ++i) {
+    const Builder::Interior& n = builder.interior[i];
+    PlanNode& out = interior_[i];
+    out.degree = static_cast<std::int8_t>(n.degree);
+    out.four = n.four < 0 ? kFlatNode : static_cast<std::uint16_t>(four_number[static_cast<std::size_t>(n.four)]);
+    for (int j = 0; j < 4; ++j) out.child[j] = n.four < 0 ? 0 : static_cast<std::uint16_t>(number(n.child[j]));
+    masks_.push_back(n.mask);
+  }
+  tops_.clear();
+  for (const int code : top_codes) tops_.push_back(number(code));
   built_ = true;
 }
 
@@ -113,9 +231,25 @@ bool DmsRecurrencePlan::matches(const Eigen::Vector3d* knots) const {
   return built_ && std::equal(knots, knots + knot_count_, knots_.begin());
 }
 
-// Depth first, so that a node's children precede it; returns the node of `subset`.
-int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMemo& index) {
-  if (const double* known = index.find(subset)) return static_cast<int>(*known);
+void DmsRecurrencePlan::shrink_to_fit() {
+  normals_.shrink_to_fit();
+  face_begin_.shrink_to_fit();
+  fours_.shrink_to_fit();
+  interior_.shrink_to_fit();
+  masks_.shrink_to_fit();
+  tops_.shrink_to_fit();
+  scales_.shrink_to_fit();
+}
+
+std::size_t DmsRecurrencePlan::memory_bytes() const {
+  return sizeof(*this) + normals_.capacity() * sizeof(double) + face_begin_.capacity() * sizeof(std::uint16_t) +
+         fours_.capacity() * sizeof(PlanFour) + interior_.capacity() * sizeof(PlanNode) +
+         masks_.capacity() * sizeof(KnotMask) + tops_.capacity() * sizeof(int) + scales_.capacity() * sizeof(double);
+}
+
+// Depth first, so that a node's children precede it; returns the code of `subset`.
+int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, Builder& builder) {
+  if (const double* known = builder.index.find(subset)) return static_cast<int>(*known);
   std::array<int, 4> w{};
   int code;
   const int knots_in_subset = std::popcount(subset);
@@ -125,64 +259,90 @@ int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, SubsetMe
       k = std::countr_zero(rest);
       rest &= rest - 1;
     }
-    BarycentricFrame frame;
-    PlanLeaf leaf{};
-    if (make_frame(knots_[w[0]], knots_[w[1]], knots_[w[2]], knots_[w[3]], frame)) {
-      leaf.origin = {frame.origin.x(), frame.origin.y(), frame.origin.z()};
-      for (int j = 0; j < 3; ++j) {
-        for (int k = 0; k < 3; ++k) leaf.g[3 * j + k] = frame.g[j + 1][k];
-      }
-      leaf.inverse_volume = 1.0 / std::abs(frame.det);
-    }
-    leaf.mask = subset;
-    for (int j = 0; j < 4; ++j) leaf.w[j] = static_cast<std::int8_t>(w[j]);
-    code = -1 - static_cast<int>(leaves_.size());
-    leaves_.push_back(leaf);
+    code = -1 - static_cast<int>(builder.leaf_four.size());
+    builder.leaf_four.push_back(builder.four_of(w, knots_));
+    builder.leaf_masks.push_back(subset);
   } else {
-    PlanNode node;
+    Builder::Interior node{};
     node.mask = subset;
-    node.degree = static_cast<std::int8_t>(knots_in_subset - 4);
-    node.flat = !choose_dms_knots(knots_, cloud_size_, subset, w, node.frame, binding);
-    if (!node.flat) {
-      for (int j = 0; j < 4; ++j) node.child[j] = add(subset & ~(KnotMask{1} << w[j]), binding, index);
+    node.degree = knots_in_subset - 4;
+    node.four = -1;
+    BarycentricFrame frame;
+    if (choose_dms_knots(knots_, cloud_size_, subset, w, frame, binding)) {
+      std::sort(w.begin(), w.end());
+      const int four = builder.four_of(w, knots_);
+      if (builder.four_list[static_cast<std::size_t>(four)].inverse_det != 0) {
+        node.four = four;
+        for (int j = 0; j < 4; ++j) node.child[j] = add(subset & ~(KnotMask{1} << w[j]), binding, builder);
+      }
     }
-    for (int j = 0; j < 4; ++j) node.w[j] = static_cast<std::int8_t>(w[j]);
-    code = static_cast<int>(interior_.size());
-    interior_.push_back(node);
+    code = static_cast<int>(builder.interior.size());
+    builder.interior.push_back(node);
   }
-  index.store(subset, code);
+  builder.index.store(subset, code);
   return code;
 }
 
-void DmsRecurrencePlan::values(const Eigen::Vector3d& x, double* out, int knot) const {
+std::array<Eigen::Vector3d, 4> DmsRecurrencePlan::lambda_gradients(int i) const {
+  const PlanFour& f = fours_[interior(i).four];
+  std::array<Eigen::Vector3d, 4> g;
+  for (int j = 0; j < 4; ++j) {
+    const std::size_t k = f.face[j];
+    const std::size_t stride = static_cast<std::size_t>(face_count_);
+    const double s = (j % 2 == 0 ? -1.0 : 1.0) * f.inverse_det;
+    g[j] = Eigen::Vector3d(s * normals_[k], s * normals_[stride + k], s * normals_[2 * stride + k]);
+  }
+  return g;
+}
+
+void DmsRecurrencePlan::face_determinants(const Eigen::Vector3d& x, double* d) const {
+  const double* nx = normals_.data();
+  const double* ny = nx + face_count_;
+  const double* nz = ny + face_count_;
+  for (int k = 0; k < knot_count_; ++k) {
+    const int end = face_begin_[static_cast<std::size_t>(k) + 1];
+    int f = face_begin_[static_cast<std::size_t>(k)];
+    if (f == end) continue;
+    const double rx = x.x() - knots_[k].x();
+    const double ry = x.y() - knots_[k].y();
+    const double rz = x.z() - knots_[k].z();
+    for (; f < end; ++f) d[f] = nx[f] * rx + ny[f] * ry + nz[f] * rz;
+  }
+}
+
+void DmsRecurrencePlan::values(const Eigen::Vector3d& x, double* out, int knot, double* work) const {
   constexpr double kUndecided = 1e-9;  // as half_open_contains
-  const int leaf_count = this->leaf_count();
+  double* d = work;
+  face_determinants(x, d);
   // At a knot, faces of other knots are decided as make_frame decides their fours (flat within
   // rounding); elsewhere exactly.
-  for (int i = 0; i < leaf_count; ++i) {
-    const PlanLeaf& f = leaves_[i];
-    const auto l = f.lambda(x);
+  for (int i = 0; i < leaf_count_; ++i) {
+    const PlanFour& f = fours_[static_cast<std::size_t>(i)];
+    const auto l = lambda(i, d);
     const double smallest = std::min(std::min(l[0], l[1]), std::min(l[2], l[3]));
+    const double inverse_volume = std::abs(f.inverse_det);
     if (smallest > kUndecided) {
-      out[i] = f.inverse_volume;
-    } else if (!(smallest >= -kUndecided) || f.inverse_volume == 0) {
+      out[i] = inverse_volume;
+    } else if (!(smallest >= -kUndecided) || inverse_volume == 0) {
       out[i] = 0;
     } else {
       const Eigen::Vector3d& a = knots_[f.w[0]];
       const Eigen::Vector3d& b = knots_[f.w[1]];
       const Eigen::Vector3d& c = knots_[f.w[2]];
-      const Eigen::Vector3d& d = knots_[f.w[3]];
+      const Eigen::Vector3d& e = knots_[f.w[3]];
       const bool inside =
-          knot >= 0 ? in_half_open_tetrahedron_at_knot(x, a, b, c, d) : in_half_open_tetrahedron(x, a, b, c, d);
-      out[i] = inside ? f.inverse_volume : 0.0;
+          knot >= 0 ? in_half_open_tetrahedron_at_knot(x, a, b, c, e) : in_half_open_tetrahedron(x, a, b, c, e);
+      out[i] = inside ? inverse_volume : 0.0;
     }
   }
-  double* interior_out = out + leaf_count;
+  double* interior_out = out + leaf_count_;
   for (const PlanNode& n : interior_) {
     double v = 0;
-    if (!n.flat) {
-      const auto l = n.frame.lambda(x);
-      for (int j = 0; j < 4; ++j) v += l[j] * out[n.child[j]];
+    const double c0 = out[n.child[0]], c1 = out[n.child[1]], c2 = out[n.child[2]], c3 = out[n.child[3]];
+    // All children 0 (x outside every child's support, the usual case far from a subset): 0.
+    if (n.four != kFlatNode && (c0 != 0 || c1 != 0 || c2 != 0 || c3 != 0)) {
+      const auto l = lambda(n.four, d);
+      v = l[0] * c0 + l[1] * c1 + l[2] * c2 + l[3] * c3;
     }
     *interior_out++ = v;
   }
@@ -195,8 +355,9 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
   if (!(a < b)) return;
   double* at_lower = scratch;
   double* at_upper = scratch + count;
+  double* work = scratch + 2 * count;
   if (direction.squaredNorm() == 0) {
-    values(origin, at_lower);
+    values(origin, at_lower, knot_at(origin), work);
     for (int i = 0; i < count; ++i) out[i] = at_lower[i] == 0 ? 0.0 : (b - a) * at_lower[i];
     return;
   }
@@ -213,36 +374,68 @@ void DmsRecurrencePlan::line_integrals(const Eigen::Vector3d& origin, const Eige
     if (outside_box(end)) {
       std::fill(at, at + count, 0.0);
     } else {
-      values(end, at);
+      values(end, at, knot_at(end), work);
     }
   }
-  const int leaf_count = this->leaf_count();
-  for (int i = 0; i < leaf_count; ++i) {
-    const PlanLeaf& f = leaves_[i];
-    if (f.inverse_volume == 0) {
-      out[i] = flat_line_integral(knots_.data(), f.mask, o, direction, lower, upper);
+  // λ(o) and μ(direction) of every four from the faces: D(o) and n·direction.
+  double* d = work;
+  double* e = work + face_count();
+  face_determinants(o, d);
+  for (int f = 0; f < face_count(); ++f) {
+    const auto k = static_cast<std::size_t>(f);
+    const auto stride = static_cast<std::size_t>(face_count_);
+    e[f] = normals_[k] * direction.x() + normals_[stride + k] * direction.y() + normals_[2 * stride + k] * direction.z();
+  }
+  for (int i = 0; i < leaf_count_; ++i) {
+    const PlanFour& f = fours_[static_cast<std::size_t>(i)];
+    if (f.inverse_det == 0) {
+      out[i] = flat_line_integral(knots_.data(), masks_[static_cast<std::size_t>(i)], o, direction, lower, upper);
       continue;
     }
     double s_lo = lower;
     double s_hi = upper;
-    clip_to_chord(f.lambda(o), f.mu(direction), s_lo, s_hi);
-    out[i] = s_hi > s_lo ? (s_hi - s_lo) * f.inverse_volume : 0.0;
+    out[i] = clip_to_chord_within(lambda(i, d), lambda(i, e), s_lo, s_hi) ? (s_hi - s_lo) * std::abs(f.inverse_det) : 0.0;
   }
-  for (int i = leaf_count; i < count; ++i) {
+  // 1/(n + 1) and n/(n + 1) of eq. 16 per degree (a division per node would be the critical path).
+  std::array<double, kMaxSimplexSplineDegree + 1> inverse{}, ratio{};
+  for (int n = 1; n <= kMaxSimplexSplineDegree; ++n) {
+    inverse[static_cast<std::size_t>(n)] = 1.0 / (n + 1);
+    ratio[static_cast<std::size_t>(n)] = static_cast<double>(n) / (n + 1);
+  }
+  for (int i = leaf_count_; i < count; ++i) {
     const PlanNode& n = interior(i);
-    if (n.flat) {
-      out[i] = flat_line_integral(knots_.data(), n.mask, o, direction, lower, upper);
+    if (n.four == kFlatNode) {
+      out[i] = flat_line_integral(knots_.data(), masks_[static_cast<std::size_t>(i)], o, direction, lower, upper);
       continue;
     }
-    // Eq. 16 about the middle of the chord of W's tetrahedron (recurrence_shift).
-    const auto m = n.frame.mu(direction);
-    const auto l0 = n.frame.lambda(o);
-    const Eigen::Vector3d centroid = 0.25 * (knots_[n.w[0]] + knots_[n.w[1]] + knots_[n.w[2]] + knots_[n.w[3]]);
-    const double shift = recurrence_shift(l0, m, centroid, o, direction, lower, upper);
+    // Where the line misses every child's support it misses the subset's (eq. 1: M(V) vanishes
+    // where all M(V \ w_j) do), and with both ends outside it too the integral is 0 (the sum below
+    // would give exactly 0): no chord to compute.
+    if (out[n.child[0]] == 0 && out[n.child[1]] == 0 && out[n.child[2]] == 0 && out[n.child[3]] == 0 &&
+        at_upper[i] == 0 && at_lower[i] == 0) {
+      out[i] = 0;
+      continue;
+    }
+    // Eq. 16 about a point of the line where every λ_j >= 0, so that the sum does not cancel: the
+    // middle of the chord of W's tetrahedron within [lower, upper], else recurrence_shift (the
+    // middle of the whole chord, or the point nearest W's centroid where the line misses W).
+    const auto l0 = lambda(n.four, d);
+    const auto m = lambda(n.four, e);
+    double lo = lower;
+    double hi = upper;
+    double shift;
+    if (clip_to_chord_within(l0, m, lo, hi)) {
+      shift = 0.5 * (lo + hi);
+    } else {
+      const PlanFour& f = fours_[n.four];
+      const Eigen::Vector3d centroid = 0.25 * (knots_[f.w[0]] + knots_[f.w[1]] + knots_[f.w[2]] + knots_[f.w[3]]);
+      shift = recurrence_shift(l0, m, centroid, o, direction, lower, upper);
+    }
     double sum = 0;
     for (int j = 0; j < 4; ++j) sum += (l0[j] + shift * m[j]) * out[n.child[j]];
     const double boundary = (upper - shift) * at_upper[i] - (lower - shift) * at_lower[i];
-    out[i] = (n.degree * sum + boundary) / (n.degree + 1);
+    const auto degree = static_cast<std::size_t>(n.degree);
+    out[i] = ratio[degree] * sum + inverse[degree] * boundary;
   }
 }
 

@@ -1,11 +1,18 @@
 #pragma once
 // The recurrence of eq. 1 for all basis functions of one DMS tetrahedron, compiled once per knot
 // configuration: the four knots W of every subset (the last knot of each cloud, completed
-// greedily where a cloud is missing; dms_recurrence_plan.cpp), and so their barycentric frames,
-// do not depend on the point. The plan lists the subsets
-// the V_β reach in an order where children come first; evaluating at a point is one pass over it
-// (barycentric coordinates, a weighted sum of two to four children, or the half-open test at the
-// leaves), without choices, hashing or allocation.
+// greedily where a cloud is missing; dms_recurrence_plan.cpp), and so their barycentric
+// coordinates, do not depend on the point. The plan lists the subsets the V_β reach in an order
+// where children come first; evaluating at a point is one pass over it (barycentric coordinates,
+// a weighted sum of two to four children, or the half-open test at the leaves), without choices,
+// hashing or allocation.
+//
+// Compact by sharing (scattered points miss the caches, so the bytes read per point are the
+// cost): every barycentric coordinate is a determinant det[b - a, c - a, x - a] of a face (a, b, c)
+// of W over det W, and the fours of one tetrahedron share most of their faces, the leaves and the
+// W of larger subsets share most of their fours. A face stores its normal (b - a) × (c - a) once;
+// per point each face costs one dot product with x - a, relative to a knot of the face (no
+// absolute coordinates: the coordinate keeps the digits of x - a).
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -15,42 +22,24 @@
 
 namespace volspline::simplex_detail {
 
-/// A subset of at least five knots: eq. 1 with W and its frame, over the children.
+/// Four knots w_0 < w_1 < w_2 < w_3 (indices). λ_j(x) = σ_j D_{face_j}(x) / det W with
+/// σ = (-1, +1, -1, +1), face_j the other three knots in increasing order, D_{(a,b,c)}(x) =
+/// det[b - a, c - a, x - a] (Cramer's rule: det W with w_j replaced by x, permuted so that x comes
+/// last). inverse_det = 0 for a four that is flat within rounding (make_frame).
+struct PlanFour {
+  double inverse_det;
+  std::array<std::uint16_t, 4> face;
+  std::array<std::int8_t, 4> w;
+};
+
+/// A subset of at least five knots: eq. 1 over the four W (children[j] = subset \ w_j).
 struct PlanNode {
-  BarycentricFrame frame;                             // of W
-  std::array<std::int32_t, 4> child{-1, -1, -1, -1};  // node of subset \ w_j (-1 in a flat node)
-  std::array<std::int8_t, 4> w{};                     // knot indices of W
-  KnotMask mask = 0;                                  // the subset
-  std::int8_t degree = 0;
-  bool flat = false;  // no four independent knots: M = 0 pointwise, a measure on a plane
+  std::array<std::uint16_t, 4> child;
+  std::uint16_t four;  // kFlatNode: no four independent knots, M = 0 pointwise (a measure on a plane)
+  std::int8_t degree;
 };
 
-/// A four-knot subset in the layout of the evaluation loop: λ_j(x) = g_j·(x - origin) for
-/// j = 1..3, λ_0 = 1 - λ_1 - λ_2 - λ_3, M = 1/|det| on the half-open tetrahedron (0 for a flat
-/// four, whose g are 0).
-struct PlanLeaf {
-  std::array<double, 3> origin;
-  std::array<double, 9> g;  // g_1, g_2, g_3
-  double inverse_volume;
-  KnotMask mask;
-  std::array<std::int8_t, 4> w;  // its knots
-
-  std::array<double, 4> lambda(const Eigen::Vector3d& x) const {
-    const double rx = x.x() - origin[0];
-    const double ry = x.y() - origin[1];
-    const double rz = x.z() - origin[2];
-    const double l1 = g[0] * rx + g[1] * ry + g[2] * rz;
-    const double l2 = g[3] * rx + g[4] * ry + g[5] * rz;
-    const double l3 = g[6] * rx + g[7] * ry + g[8] * rz;
-    return {1.0 - l1 - l2 - l3, l1, l2, l3};
-  }
-  std::array<double, 4> mu(const Eigen::Vector3d& v) const {
-    const double m1 = g[0] * v.x() + g[1] * v.y() + g[2] * v.z();
-    const double m2 = g[3] * v.x() + g[4] * v.y() + g[5] * v.z();
-    const double m3 = g[6] * v.x() + g[7] * v.y() + g[8] * v.z();
-    return {-m1 - m2 - m3, m1, m2, m3};
-  }
-};
+inline constexpr std::uint16_t kFlatNode = 0xFFFF;
 
 class DmsRecurrencePlan {
  public:
@@ -61,60 +50,88 @@ class DmsRecurrencePlan {
   /// Whether the plan was built for exactly these knot coordinates.
   bool matches(const Eigen::Vector3d* knots) const;
   /// Releases spare capacity (for plans kept per tetrahedron).
-  void shrink_to_fit() {
-    interior_.shrink_to_fit();
-    leaves_.shrink_to_fit();
-    tops_.shrink_to_fit();
-    scales_.shrink_to_fit();
-  }
-  std::size_t memory_bytes() const {
-    return sizeof(*this) + interior_.capacity() * sizeof(PlanNode) + leaves_.capacity() * sizeof(PlanLeaf) +
-           (tops_.capacity() + scales_.capacity()) * sizeof(double);
-  }
+  void shrink_to_fit();
+  std::size_t memory_bytes() const;
 
-  /// Nodes are numbered leaves first (0..leaf_count()), then the larger subsets, children before
-  /// parents.
-  int size() const { return static_cast<int>(leaves_.size() + interior_.size()); }
-  int leaf_count() const { return static_cast<int>(leaves_.size()); }
+  /// Nodes are numbered leaves first (0..leaf_count(); leaf i is four i), then the larger subsets,
+  /// children before parents.
+  int size() const { return leaf_count_ + static_cast<int>(interior_.size()); }
+  int leaf_count() const { return leaf_count_; }
+  int face_count() const { return face_count_; }
+  int four_count() const { return static_cast<int>(fours_.size()); }
+  /// Doubles of scratch that values() and line_integrals() need besides their output.
+  int work_size() const { return 2 * face_count(); }
   /// A node numbered >= leaf_count().
-  const PlanNode& interior(int i) const { return interior_[i - leaf_count()]; }
+  const PlanNode& interior(int i) const { return interior_[static_cast<std::size_t>(i - leaf_count_)]; }
+  /// Whether node i is a non-flat subset of at least five knots.
+  bool has_frame(int i) const { return i >= leaf_count_ && interior(i).four != kFlatNode; }
+  /// ∇λ_j of the four W of node i (has_frame(i)); the μ_j(e_x, e_y, e_z) of eq. 2. The children
+  /// interior(i).child follow the same j.
+  std::array<Eigen::Vector3d, 4> lambda_gradients(int i) const;
   /// The node of V_β and |d(p_i, q_j, r_k, s_l)| of eq. 5, per β.
-  int top(int b) const { return tops_[b]; }
-  double scale(int b) const { return scales_[b]; }
+  int top(int b) const { return tops_[static_cast<std::size_t>(b)]; }
+  double scale(int b) const { return scales_[static_cast<std::size_t>(b)]; }
   /// The subset V_β of the b-th multi-index.
-  KnotMask top_mask(int b) const {
-    const int t = tops_[b];
-    return t < leaf_count() ? leaves_[t].mask : interior(t).mask;
-  }
+  KnotMask top_mask(int b) const { return masks_[static_cast<std::size_t>(tops_[static_cast<std::size_t>(b)])]; }
   const Eigen::Vector3d* knots() const { return knots_.data(); }
   int knot_count() const { return knot_count_; }
   /// The index of the knot that x is, or -1.
   int knot_at(const Eigen::Vector3d& x) const { return simplex_detail::knot_at(x, knots_.data(), knot_count_); }
   bool outside_box(const Eigen::Vector3d& x) const {
-    return (x.array() < lo_.array()).any() || (x.array() > hi_.array()).any();
+    return x.x() < lo_.x() || x.y() < lo_.y() || x.z() < lo_.z() || x.x() > hi_.x() || x.y() > hi_.y() ||
+           x.z() > hi_.z();
   }
 
-  /// M(x | subset) of every node into out[0..size()).
-  void values(const Eigen::Vector3d& x, double* out) const { values(x, out, knot_at(x)); }
-  /// The same where `knot` = knot_at(x) is known.
-  void values(const Eigen::Vector3d& x, double* out, int knot) const;
+  /// Asks the memory system for everything values() reads (scattered points find plans far from
+  /// the caches; the requests for several candidate tetrahedra then overlap).
+  void prefetch() const {
+    const auto lines = [](const void* data, std::size_t bytes) {
+      for (std::size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(static_cast<const char*>(data) + offset);
+    };
+    lines(knots_.data(), static_cast<std::size_t>(knot_count_) * sizeof(Eigen::Vector3d));
+    lines(face_begin_.data(), face_begin_.size() * sizeof(std::uint16_t));
+    lines(normals_.data(), normals_.size() * sizeof(double));
+    lines(fours_.data(), fours_.size() * sizeof(PlanFour));
+    lines(interior_.data(), interior_.size() * sizeof(PlanNode));
+    lines(tops_.data(), tops_.size() * sizeof(int));
+    lines(scales_.data(), scales_.size() * sizeof(double));
+  }
+  /// M(x | subset) of every node into out[0..size()); `knot` = knot_at(x); work holds
+  /// work_size() doubles.
+  void values(const Eigen::Vector3d& x, double* out, int knot, double* work) const;
   /// ∫_a^b M(origin + t·direction | subset) dt of every node into out[0..size()); scratch holds
-  /// 2·size() doubles.
+  /// 2·size() + work_size() doubles.
   void line_integrals(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double a, double b, double* out,
                       double* scratch) const;
 
  private:
+  struct Builder;
   // Adds `subset` and the subsets it needs (depth first, so children come first); returns
-  // -1 - its position in leaves_ for a leaf, its position in interior_ otherwise.
-  int add(KnotMask subset, const KnotBinding& binding, SubsetMemo& index);
+  // -1 - its position among the leaves for a leaf, its position in interior_ otherwise.
+  int add(KnotMask subset, const KnotBinding& binding, Builder& builder);
+  // D of every face at x (faces are grouped by their first knot: one x - a per group).
+  void face_determinants(const Eigen::Vector3d& x, double* d) const;
+  // λ of four q from the face determinants.
+  std::array<double, 4> lambda(int q, const double* d) const {
+    const PlanFour& f = fours_[static_cast<std::size_t>(q)];
+    const double s = f.inverse_det;
+    return {-s * d[f.face[0]], s * d[f.face[1]], -s * d[f.face[2]], s * d[f.face[3]]};
+  }
 
-  std::vector<PlanLeaf> leaves_;
+  // Per face, grouped by first knot, by coordinate: x of every face, then y, then z (the dot
+  // products of one group then run over consecutive doubles).
+  std::vector<double> normals_;
+  int face_count_ = 0;
+  std::vector<std::uint16_t> face_begin_;       // faces of first knot k: face_begin_[k]..[k+1]
+  std::vector<PlanFour> fours_;                 // the leaves' fours first
   std::vector<PlanNode> interior_;
+  std::vector<KnotMask> masks_;  // per node
   std::vector<int> tops_;
   std::vector<double> scales_;
   std::array<Eigen::Vector3d, kMaxRecurrenceKnots> knots_{};
   int knot_count_ = 0;
   int cloud_size_ = 0;
+  int leaf_count_ = 0;
   Eigen::Vector3d lo_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d hi_ = Eigen::Vector3d::Zero();
   bool built_ = false;

@@ -125,7 +125,9 @@ DmsSplineEvaluator::~DmsSplineEvaluator() = default;
 DmsSplineEvaluator::DmsSplineEvaluator(const DmsSplineEvaluator& other)
     : volume_(other.volume_), index_(other.index_), scratch_(std::make_unique<Scratch>(other.volume_->degree())) {}
 
-int DmsSplineEvaluator::locate(const Eigen::Vector3d& x) const {
+int DmsSplineEvaluator::locate(const Eigen::Vector3d& x) const { return locate(x, nullptr); }
+
+int DmsSplineEvaluator::locate(const Eigen::Vector3d& x, bool* clearly_inside_out) const {
   const TetrahedralMesh& domain = volume_->domain();
   // A point inside a tetrahedron by a clear margin lies in no other (the mesh is proper): the
   // floating-point face planes decide it; only points near a face need the exact predicates.
@@ -133,8 +135,12 @@ int DmsSplineEvaluator::locate(const Eigen::Vector3d& x) const {
     const std::array<Eigen::Vector4d, 4>& planes = index_->domain_planes[static_cast<std::size_t>(t)];
     bool clearly_inside = true;
     for (const Eigen::Vector4d& p : planes) clearly_inside = clearly_inside && p.head<3>().dot(x) < p[3];
-    if (clearly_inside) return t;
+    if (clearly_inside) {
+      if (clearly_inside_out != nullptr) *clearly_inside_out = true;
+      return t;
+    }
   }
+  if (clearly_inside_out != nullptr) *clearly_inside_out = false;
   int found = -1;
   for (const int t : index_->tetrahedra.query(x)) {
     if (found >= 0 && t > found) continue;
@@ -207,7 +213,8 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
   const int dim = v.dimension();
   out.value.setZero(dim);
   if (order >= 1) out.gradient.setZero(dim, 3);
-  out.tetrahedron = locate(x);
+  bool clearly_inside = false;
+  out.tetrahedron = locate(x, &clearly_inside);
   out.inside = out.tetrahedron >= 0;
   if (!out.inside) return;
   const Eigen::MatrixXd& control = v.control_vectors();
@@ -221,8 +228,7 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
   // outside Ω, where the basis no longer sums to 1; there the derivatives come from a point
   // 1e-9 of the tetrahedron's size inside, on the domain's side of every nearby knot plane.
   Eigen::Vector3d derivative_point = x;
-  bool near_face = false;
-  for (const Eigen::Vector4d& p : index_->domain_planes[static_cast<std::size_t>(out.tetrahedron)]) near_face = near_face || !(p.head<3>().dot(x) < p[3]);
+  const bool near_face = !clearly_inside;
   if (order >= 1 && near_face && leaves_domain(x, out.tetrahedron)) {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (int c = 0; c < 4; ++c)
@@ -233,15 +239,29 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
     const Eigen::Vector3d& at = pass == 0 ? x : derivative_point;
     const int pass_order = derivative_point == x ? order : (pass == 0 ? 0 : 1);
     support_candidates(at, scratch_->candidates);
+    for (const int t : scratch_->candidates) index_->plans[static_cast<std::size_t>(t)].prefetch();
     for (const int t : scratch_->candidates) {
       scratch_->basis.evaluate(at, index_->plans[static_cast<std::size_t>(t)], pass_order, scratch_->values);
+      // Plain loops over the control vector's entries: Eigen's products of a row of a dynamic
+      // matrix would evaluate into heap temporaries here, once per basis function.
+      const double* control_data = control.data();
+      const Eigen::Index stride = control.rows();
+      double* value_out = out.value.data();
       for (int b = 0; b < v.basis_per_tetrahedron(); ++b) {
         const double value = pass == 0 ? scratch_->values.values[static_cast<std::size_t>(b)] : 0.0;
-        const bool has_gradient = pass_order >= 1 && !scratch_->values.gradients[static_cast<std::size_t>(b)].isZero(0.0);
+        const Eigen::Vector3d* g = pass_order >= 1 ? &scratch_->values.gradients[static_cast<std::size_t>(b)] : nullptr;
+        const bool has_gradient = g != nullptr && (g->x() != 0 || g->y() != 0 || g->z() != 0);
         if (value == 0.0 && !has_gradient) continue;
-        const auto c = control.row(v.control_row(t, b));
-        if (value != 0.0) out.value += value * c.transpose();
-        if (has_gradient) out.gradient += c.transpose() * scratch_->values.gradients[static_cast<std::size_t>(b)].transpose();
+        const double* c = control_data + v.control_row(t, b);
+        for (int k = 0; k < dim; ++k) {
+          const double ck = c[k * stride];
+          value_out[k] += value * ck;
+          if (has_gradient) {
+            out.gradient(k, 0) += ck * g->x();
+            out.gradient(k, 1) += ck * g->y();
+            out.gradient(k, 2) += ck * g->z();
+          }
+        }
       }
     }
   }

@@ -37,10 +37,9 @@ class DmsRecurrenceState {
 
   // Room for the node values of `plan` (grows only for a plan larger than any before).
   void fit(const DmsRecurrencePlan& plan) {
-    if (node_values_.size() < static_cast<std::size_t>(plan.size())) {
-      node_values_.resize(plan.size());
-      scratch_.resize(2 * static_cast<std::size_t>(plan.size()));
-    }
+    if (node_values_.size() < static_cast<std::size_t>(plan.size())) node_values_.resize(plan.size());
+    const std::size_t scratch = 2 * static_cast<std::size_t>(plan.size()) + static_cast<std::size_t>(plan.work_size());
+    if (scratch_.size() < scratch) scratch_.resize(scratch);
   }
 
   double* node_values() { return node_values_.data(); }
@@ -159,26 +158,27 @@ void DmsTetrahedronBasis::evaluate_plan(const Eigen::Vector3d& x, const simplex_
   }
   state_->fit(plan);
   double* m = state_->node_values();
-  plan.values(x, m, -1);
+  plan.values(x, m, -1, state_->scratch());
   const int n = degree_;
   for (std::size_t b = 0; b < count; ++b) {
     const int top = plan.top(static_cast<int>(b));
     const double scale = plan.scale(static_cast<int>(b));
     out.values[b] = scale * m[top];
-    if (order == 0 || n == 0) continue;
+    if (order == 0 || n == 0 || !plan.has_frame(top)) continue;
     const auto& node = plan.interior(top);
-    if (node.flat) continue;
+    const auto g = plan.lambda_gradients(top);
     // Eq. 2: ∇M(V) = n Σ_j ∇λ_j M(V \ w_j); for the Hessian eq. 2 again on each M(V \ w_j).
     Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
     Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
     for (int j = 0; j < 4; ++j) {
       const int c = node.child[j];
-      gradient += node.frame.g[j] * m[c];
-      if (order == 2 && n >= 2 && !plan.interior(c).flat) {
+      gradient += g[j] * m[c];
+      if (order == 2 && n >= 2 && plan.has_frame(c)) {
         const auto& child = plan.interior(c);
+        const auto gc = plan.lambda_gradients(c);
         Eigen::Vector3d child_gradient = Eigen::Vector3d::Zero();
-        for (int k = 0; k < 4; ++k) child_gradient += child.frame.g[k] * m[child.child[k]];
-        hessian += node.frame.g[j] * child_gradient.transpose();
+        for (int k = 0; k < 4; ++k) child_gradient += gc[k] * m[child.child[k]];
+        hessian += g[j] * child_gradient.transpose();
       }
     }
     out.gradients[b] = (scale * n) * gradient;
@@ -239,6 +239,10 @@ bool DmsTetrahedronPlan::matches(const std::array<const Eigen::Vector3d*, 4>& cl
   std::array<Eigen::Vector3d, simplex_detail::kMaxRecurrenceKnots> knots{};
   for (int c = 0; c < 4; ++c) std::copy(clouds[c], clouds[c] + degree_ + 1, knots.begin() + c * (degree_ + 1));
   return plan_->matches(knots.data());
+}
+
+void DmsTetrahedronPlan::prefetch() const {
+  if (plan_) plan_->prefetch();
 }
 
 std::size_t DmsTetrahedronPlan::memory_bytes() const {

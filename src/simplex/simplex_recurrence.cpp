@@ -298,14 +298,16 @@ double PointRecurrence::value(KnotMask subset) {
       const auto& c = binding_->knot(idx[2]);
       const auto& d = binding_->knot(idx[3]);
       BarycentricFrame frame;
-      if (make_frame(a, b, c, d, frame) && half_open_contains(frame.lambda(x_), x_, knot_ >= 0, a, b, c, d)) {
+      if (make_frame(a, b, c, d, frame) &&
+          half_open_contains(face_barycentric(x_, a, b, c, d, frame.det), x_, knot_ >= 0, a, b, c, d)) {
         v = 1.0 / std::abs(frame.det);
       }
     } else {
       std::array<int, 4> w{};
       BarycentricFrame frame;
       if (binding_->choose(subset, &x_, w, frame)) {
-        auto l = frame.lambda(x_);
+        auto l = face_barycentric(x_, binding_->knot(w[0]), binding_->knot(w[1]), binding_->knot(w[2]),
+                                  binding_->knot(w[3]), frame.det);
         if (knot_ >= 0) snap_to_knot(l, w, knot_);
         for (int j = 0; j < 4; ++j) {
           if (l[j] != 0) v += l[j] * value(subset & ~bit(w[j]));
@@ -338,7 +340,8 @@ SimplexSplineJet PointRecurrence::jet(KnotMask subset, int order) {
   std::array<int, 4> w{};
   BarycentricFrame frame;
   if (!binding_->choose(subset, &x_, w, frame)) return out;
-  auto l = frame.lambda(x_);
+  auto l = face_barycentric(x_, binding_->knot(w[0]), binding_->knot(w[1]), binding_->knot(w[2]), binding_->knot(w[3]),
+                            frame.det);
   if (knot_ >= 0) snap_to_knot(l, w, knot_);
   for (int j = 0; j < 4; ++j) {
     const KnotMask child = subset & ~bit(w[j]);

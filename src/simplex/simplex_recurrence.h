@@ -41,6 +41,20 @@ struct BarycentricFrame {
   }
 };
 
+/// λ(x) with respect to (a, b, c, d) by Cramer's rule, det = det[b - a, c - a, d - a]: λ_j is det W
+/// with w_j replaced by x over det W, and each numerator is taken as det[q - p, r - p, x - p] of
+/// the other three knots (p, q, r), relative to a knot of that face. Near a cloud's small
+/// tetrahedra this keeps digits that g·(x - a) and λ_0 = 1 - λ_1 - λ_2 - λ_3 lose.
+inline std::array<double, 4> face_barycentric(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
+                                              const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                                              const Eigen::Vector3d& d, double det) {
+  const auto face = [&x](const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r) {
+    return (q - p).cross(r - p).dot(x - p);
+  };
+  const double inverse = 1.0 / det;
+  return {-face(b, c, d) * inverse, face(a, c, d) * inverse, -face(a, b, d) * inverse, face(a, b, c) * inverse};
+}
+
 /// det[b - a, c - a, d - a] in floating point.
 inline double oriented_det(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                            const Eigen::Vector3d& d) {

@@ -53,13 +53,15 @@ double reference_value(const Eigen::Vector3d& x, int knot,
     const auto& c = knots[idx[2]];
     const auto& d = knots[idx[3]];
     if (!simplex_detail::make_frame(a, b, c, d, frame)) return 0;
-    return simplex_detail::half_open_contains(frame.lambda(x), x, knot >= 0, a, b, c, d) ? 1.0 / std::abs(frame.det)
-                                                                                        : 0.0;
+    return simplex_detail::half_open_contains(simplex_detail::face_barycentric(x, a, b, c, d, frame.det), x, knot >= 0,
+                                              a, b, c, d)
+               ? 1.0 / std::abs(frame.det)
+               : 0.0;
   }
   std::array<int, 4> w{};
   BarycentricFrame frame;
   if (!binding.choose(subset, &x, w, frame)) return 0;
-  auto l = frame.lambda(x);
+  auto l = simplex_detail::face_barycentric(x, knots[w[0]], knots[w[1]], knots[w[2]], knots[w[3]], frame.det);
   if (knot >= 0) simplex_detail::snap_to_knot(l, w, knot);
   double v = 0;
   for (int j = 0; j < 4; ++j) {

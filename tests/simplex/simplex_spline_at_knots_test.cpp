@@ -64,12 +64,13 @@ TEST(SimplexSplineAtKnots, DmsBasisSumsToOneAndReproducesTheIdentity) {
       worst_sum = std::max(worst_sum, std::abs(sum - 1));
       worst_identity = std::max(worst_identity, (evaluator.evaluate(x).value.head<3>() - x).norm());
     }
-    // Measured: 3e-14, 8.9e-12, 6.6e-12, 5.0e-12 (sum) and 4e-14, 8.6e-12, 5.8e-12, 3.9e-12
-    // (identity) for degrees 1..4. Before the knots' flat fours were recognised, degree 3 gave a
-    // sum of 106 and an error of 93 at the interior vertex; with them but with the compiled
-    // plan's W at knots, 3e-11..3e-10 (degrees 2..4).
-    EXPECT_LT(worst_sum, 3e-11) << "degree " << degree;
-    EXPECT_LT(worst_identity, 3e-11) << "degree " << degree;
+    // Measured: 1.5e-14, 4.3e-13, 1.2e-13, 7e-14 (sum) and 1.8e-14, 3.8e-13, 1.7e-13, 6e-14
+    // (identity) for degrees 1..4 with barycentric coordinates from faces relative to one of their
+    // knots (face_barycentric); 3e-14..8.9e-12 with g·(x - a). Before the knots' flat fours were
+    // recognised, degree 3 gave a sum of 106 and an error of 93 at the interior vertex; with them
+    // but with the compiled plan's W at knots, 3e-11..3e-10 (degrees 2..4).
+    EXPECT_LT(worst_sum, 1e-12) << "degree " << degree;
+    EXPECT_LT(worst_identity, 1e-12) << "degree " << degree;
   }
 }
 
@@ -85,10 +86,11 @@ TEST(SimplexSplineAtKnots, DmsBasisIsTheLimitFromThePerturbedSide) {
       for (const auto& [row, value] : at) worst = std::max(worst, std::abs(value - near[row]));
       for (const auto& [row, value] : near) worst = std::max(worst, std::abs(value - (at.count(row) ? at.at(row) : 0.0)));
     }
-    // Measured: 2e-12, 2.6e-11, 2.5e-11, 7e-12 for degrees 1..4 (the plan's rounding beside
-    // the knots); basis functions jump by up to 1 across the planes of flat fours, so a value from
-    // the wrong side would show.
-    EXPECT_LT(worst, 1e-10) << "degree " << degree;
+    // Measured: 2.3e-13, 6.9e-13, 2.7e-12, 1.1e-12 for degrees 1..4 (the plan's rounding beside
+    // the knots; 2e-12..2.6e-11 before the plan took barycentric coordinates from faces relative
+    // to one of their knots); basis functions jump by up to 1 across the planes of flat fours, so
+    // a value from the wrong side would show.
+    EXPECT_LT(worst, 1e-11) << "degree " << degree;
   }
 }
 
@@ -134,10 +136,11 @@ TEST(SimplexSplineAtKnots, CompiledPlanEqualsScaledReferenceSplines) {
         }
       }
     }
-    // Measured: 0 at the knots (the same recurrence; 138 for degree 3 before), 9.9e-11, 2.6e-11,
-    // 3.3e-11 beside them for degrees 1..3 (the plan's fixed W near a cloud's small tetrahedra).
+    // Measured: 0 at the knots (the same recurrence; 138 for degree 3 before), 9.3e-13, 2.7e-12,
+    // 3.8e-13 beside them for degrees 1..3 (the plan's fixed W near a cloud's small tetrahedra;
+    // 9.9e-11, 2.6e-11, 3.3e-11 with barycentric coordinates g·(x - a) instead of from faces).
     EXPECT_LT(worst_at, 1e-12) << "degree " << degree;
-    EXPECT_LT(worst_beside, 3e-10) << "degree " << degree;
+    EXPECT_LT(worst_beside, 1e-11) << "degree " << degree;
   }
 }
 

@@ -60,6 +60,8 @@ class DmsSplineEvaluator {
   /// x (in the closed tetrahedron `located`) is in no half-open domain tetrahedron: the
   /// half-open rule's perturbation of x leaves Ω.
   bool leaves_domain(const Eigen::Vector3d& x, int located) const;
+  /// locate(x); *clearly_inside: whether the floating face planes decided it (x clearly inside).
+  int locate(const Eigen::Vector3d& x, bool* clearly_inside) const;
   const DmsSplineVolume* volume_;
   std::shared_ptr<const Index> index_;
   std::unique_ptr<Scratch> scratch_;

@@ -34,7 +34,7 @@ class DmsRecurrenceState;
 
 /// The point-independent part of the recurrences of one tetrahedron's basis functions: the knot
 /// subsets the V_β reach, the four knots W of each and their barycentric frames (eqs. 1-2), in an
-/// order where subsets come before the sets that use them. About 12 KiB for degree 2 and 42 KiB
+/// order where subsets come before the sets that use them. About 6 KiB for degree 2 and 17 KiB
 /// for degree 3 (memory_bytes()). Build one per domain tetrahedron, and again after its knots move,
 /// to evaluate scattered points without recompiling: compiling costs about 13 evaluations
 /// (DmsTetrahedronBasis also keeps the last few it compiled from clouds).
@@ -55,6 +55,9 @@ class DmsTetrahedronPlan {
   /// Whether the plan was compiled from exactly these knot coordinates.
   bool matches(const std::array<const Eigen::Vector3d*, 4>& clouds) const;
   std::size_t memory_bytes() const;
+  /// A hint: starts loading the plan into the caches (for the next tetrahedra to be evaluated,
+  /// while others are).
+  void prefetch() const;
 
  private:
   friend class DmsTetrahedronBasis;
