@@ -40,12 +40,8 @@ struct BoundaryArguments {
 
 // A simplex spline volume: s(∂Ω) and the asked-for isosurfaces, with the figures for --stats.
 TriangleMesh simplex_volume_boundary(const BoundaryArguments& a, std::size_t index, const DmsSplineVolume& volume, nlohmann::json& stats) {
-  SimplexBoundaryOptions options;
-  options.target_edge = a.iso_edge;
-  TriangleMesh mesh = simplex_boundary_mesh(volume, options);
-  nlohmann::json triangles = {{"domain_boundary", mesh.num_triangles()}};
-  std::cout << "object " << index << ": simplex spline volume, " << mesh.num_triangles() << " domain boundary triangles";
-  std::size_t iso_triangles = 0;
+  // The isosurfaces asked for, checked before anything is computed.
+  std::vector<SimplexIsosurfaceOptions> isosurfaces;
   for (const std::string& text : a.iso_attribute) {
     const auto colon = text.rfind(':');
     if (colon == std::string::npos || colon == 0) throw InvalidInput("expected NAME:VALUE, got '" + text + "'", "--iso-attribute");
@@ -53,9 +49,24 @@ TriangleMesh simplex_volume_boundary(const BoundaryArguments& a, std::size_t ind
     iso.attribute = text.substr(0, colon);
     iso.value = parse_numbers(text.substr(colon + 1), 1, "--iso-attribute")[0];
     iso.target_edge = a.iso_edge;
+    try {
+      volume.attribute_column(iso.attribute);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(e.message(), "--iso-attribute " + text);
+    }
+    isosurfaces.push_back(iso);
+  }
+  SimplexBoundaryOptions options;
+  options.target_edge = a.iso_edge;
+  TriangleMesh mesh = simplex_boundary_mesh(volume, options);
+  nlohmann::json triangles = {{"domain_boundary", mesh.num_triangles()}};
+  std::cout << "object " << index << ": simplex spline volume, " << mesh.num_triangles() << " domain boundary triangles";
+  std::size_t iso_triangles = 0;
+  for (std::size_t i = 0; i < isosurfaces.size(); ++i) {
+    const std::string& text = a.iso_attribute[i];
     const SimplexIsosurface surface = [&] {
       try {
-        return simplex_isosurface(volume, iso);
+        return simplex_isosurface(volume, isosurfaces[i]);
       } catch (const InvalidInput& e) {
         throw InvalidInput(e.message(), "--iso-attribute " + text);
       }

@@ -43,7 +43,7 @@ class SimplexBoundaryCli : public ::testing::Test {
 };
 
 TEST_F(SimplexBoundaryCli, WritesTheClosedDomainBoundaryAndIsosurfaces) {
-  auto r = run("boundary " + path("cube.json") + " -o " + path("b.ply") + " --png " + path("b.png") + " --size 64,48 --stats " + path("b.json"));
+  auto r = run("boundary " + path("cube.json") + " -o " + path("b.ply") + " --png " + path("b.png") + " --size 64,48 --stats " + path("b.json") + " --iso-edge 0.1");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("domain boundary triangles"), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(path("b.png")));
