@@ -54,7 +54,7 @@ TEST_F(SimplexBoundaryCli, WritesTheClosedDomainBoundaryAndIsosurfaces) {
   EXPECT_NEAR(enclosed_volume(boundary), 1.0, 1e-9);  // the identity geometry: the unit cube, outward
   for (const int part : boundary.parts) EXPECT_EQ(part, part_number(Part::DomainBoundary));
 
-  r = run("boundary " + path("cube.json") + " -o " + path("both.ply") + " --iso-attribute density:0.09 --iso-edge 0.08");
+  r = run("boundary " + path("cube.json") + " -o " + path("both.ply") + " --iso-attribute density:0.09 --iso-edge 0.1");
   ASSERT_EQ(r.code, 0) << r.err;
   const TriangleMesh both = read_mesh(path("both.ply"));
   EXPECT_TRUE(edge_statistics(both).closed_and_oriented());  // two closed surfaces
@@ -69,7 +69,7 @@ TEST_F(SimplexBoundaryCli, WritesTheClosedDomainBoundaryAndIsosurfaces) {
   EXPECT_NEAR(enclosed_volume(both), 1.0 + 4.0 / 3.0 * M_PI * 0.027, 0.01);
 
   for (const char* ext : {".obj", ".stl", ".glb"}) {
-    r = run("boundary " + path("cube.json") + " -o " + path(std::string("b") + ext) + " --iso-attribute density:0.09 --iso-edge 0.1");
+    r = run("boundary " + path("cube.json") + " -o " + path(std::string("b") + ext) + " --iso-attribute density:0.09 --iso-edge 0.3");
     EXPECT_EQ(r.code, 0) << ext << ": " << r.err;
     EXPECT_TRUE(std::filesystem::exists(path(std::string("b") + ext))) << ext;
   }
