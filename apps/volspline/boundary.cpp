@@ -1,5 +1,10 @@
-// volspline boundary MODEL -o OUT.(ply|obj|stl) [--tol T] [--max-cells N] [--bounds bezier|cone]
+// volspline boundary MODEL -o OUT.(ply|obj|stl|glb) [--tol T] [--max-cells N] [--bounds bezier|cone]
 //   [--method adaptive|uniform] [--resolution N] [--snap] [--stats STATS.json] [--png IMAGE.png]
+//   [--iso-attribute NAME:VALUE]...
+// Tensor-product volumes: the six faces and the surface J = 0 (Joy–Duchaineau). Simplex spline
+// volumes: the image of the domain's boundary s(∂Ω) and, with --iso-attribute, attribute
+// isosurfaces (Hua–He–Qin §6.2), as `view` samples them.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 
@@ -8,6 +13,8 @@
 #include "cli_support.h"
 #include "commands.h"
 #include "progress_bar.h"
+#include "volspline/extract/simplex_boundary.h"
+#include "volspline/extract/simplex_isosurface.h"
 #include "volspline/extract/solid_boundary.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
@@ -26,7 +33,53 @@ struct BoundaryArguments {
   std::int64_t max_cells = 200000;
   int resolution = 64, face_resolution = 24, min_level = 3;
   bool snap = false;
+  /// Simplex spline volumes: isosurfaces NAME:VALUE of attributes, and the sampling edge.
+  std::vector<std::string> iso_attribute;
+  double iso_edge = 0;
 };
+
+// A simplex spline volume: s(∂Ω) and the asked-for isosurfaces, with the figures for --stats.
+TriangleMesh simplex_volume_boundary(const BoundaryArguments& a, std::size_t index, const DmsSplineVolume& volume, nlohmann::json& stats) {
+  // The isosurfaces asked for, checked before anything is computed.
+  std::vector<SimplexIsosurfaceOptions> isosurfaces;
+  for (const std::string& text : a.iso_attribute) {
+    const auto colon = text.rfind(':');
+    if (colon == std::string::npos || colon == 0) throw InvalidInput("expected NAME:VALUE, got '" + text + "'", "--iso-attribute");
+    SimplexIsosurfaceOptions iso;
+    iso.attribute = text.substr(0, colon);
+    iso.value = parse_numbers(text.substr(colon + 1), 1, "--iso-attribute")[0];
+    iso.target_edge = a.iso_edge;
+    try {
+      volume.attribute_column(iso.attribute);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(e.message(), "--iso-attribute " + text);
+    }
+    isosurfaces.push_back(iso);
+  }
+  SimplexBoundaryOptions options;
+  options.target_edge = a.iso_edge;
+  TriangleMesh mesh = simplex_boundary_mesh(volume, options);
+  nlohmann::json triangles = {{"domain_boundary", mesh.num_triangles()}};
+  std::cout << "object " << index << ": simplex spline volume, " << mesh.num_triangles() << " domain boundary triangles";
+  std::size_t iso_triangles = 0;
+  for (std::size_t i = 0; i < isosurfaces.size(); ++i) {
+    const std::string& text = a.iso_attribute[i];
+    const SimplexIsosurface surface = [&] {
+      try {
+        return simplex_isosurface(volume, isosurfaces[i]);
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(e.message(), "--iso-attribute " + text);
+      }
+    }();
+    mesh.append(surface.mesh);
+    iso_triangles += surface.mesh.num_triangles();
+    std::cout << ", " << text << ": " << surface.mesh.num_triangles() << " isosurface triangles";
+  }
+  if (!a.iso_attribute.empty()) triangles["attribute_isosurface"] = iso_triangles;
+  std::cout << "\n";
+  stats["simplex_objects"].push_back({{"object", index}, {"triangles", triangles}});
+  return mesh;
+}
 
 BoundaryOptions boundary_options(const BoundaryArguments& a) {
   BoundaryOptions options;
@@ -108,21 +161,39 @@ void run_boundary(const BoundaryArguments& a) {
     const ProgressPhase phase(options.progress, "reading");
     return a.input->read();
   }();
-  const bool several = count_volumes(model) > 1;
+  const std::size_t simplex_volumes = static_cast<std::size_t>(std::count_if(
+      model.objects.begin(), model.objects.end(), [](const ModelObject& o) { return std::holds_alternative<DmsSplineVolume>(o.spline); }));
+  if (simplex_volumes == 0 && !a.iso_attribute.empty())
+    throw InvalidInput(a.input->path + " has no simplex_spline_volume object to take isosurfaces of", "--iso-attribute");
+  if (simplex_volumes == 0 && a.iso_edge != 0)
+    throw InvalidInput(a.input->path + " has no simplex_spline_volume object to sample", "--iso-edge");
+  const bool several = count_volumes(model) + simplex_volumes > 1;
   TriangleMesh mesh;
   nlohmann::json stats = {{"objects", nlohmann::json::array()}};
-  for_each_volume(model, a.input->path, [&](std::size_t i, const ModelObject&, const BSplineVolume& volume) {
-    if (several) reporter().set_label("object " + std::to_string(i));
-    const SolidBoundary b = solid_boundary(volume, options);
-    mesh.append(b.mesh);
-    const BoundaryStats& s = b.stats;
-    stats["objects"].push_back(object_stats(i, s));
-    std::cout << "object " << i << ": " << s.cells_examined << " cells examined, " << s.cells_kept << " kept, " << s.triangles_of(Part::JacobianZero)
-              << " implicit triangles, max |J| at implicit vertices " << std::setprecision(3) << s.max_rel_jacobian_at_vertices
-              << " of max |J|, " << s.seconds_total * 1e3 << " ms\n";
-  });
-  reporter().set_label("");
-  add_model_stats(stats);
+  if (simplex_volumes > 0) stats["simplex_objects"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < model.objects.size(); ++i)
+    if (const auto* volume = std::get_if<DmsSplineVolume>(&model.objects[i].spline)) {
+      try {
+        mesh.append(simplex_volume_boundary(a, i, *volume, stats));
+      } catch (const InvalidInput& e) {
+        if (e.where().rfind("--", 0) == 0) throw;
+        throw e.located(object_location(a.input->path, i));
+      }
+    }
+  if (simplex_volumes == 0 || count_volumes(model) > 0) {
+    for_each_volume(model, a.input->path, [&](std::size_t i, const ModelObject&, const BSplineVolume& volume) {
+      if (several) reporter().set_label("object " + std::to_string(i));
+      const SolidBoundary b = solid_boundary(volume, options);
+      mesh.append(b.mesh);
+      const BoundaryStats& s = b.stats;
+      stats["objects"].push_back(object_stats(i, s));
+      std::cout << "object " << i << ": " << s.cells_examined << " cells examined, " << s.cells_kept << " kept, " << s.triangles_of(Part::JacobianZero)
+                << " implicit triangles, max |J| at implicit vertices " << std::setprecision(3) << s.max_rel_jacobian_at_vertices
+                << " of max |J|, " << s.seconds_total * 1e3 << " ms\n";
+    });
+    reporter().set_label("");
+    add_model_stats(stats);
+  }
   RenderOptions render;
   render.width = wh[0];
   render.height = wh[1];
@@ -135,7 +206,8 @@ void run_boundary(const BoundaryArguments& a) {
 void add_boundary_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("boundary",
                                  "The boundary of every volume (Joy–Duchaineau Theorem 4.1): the six face patches (parts 0..5) "
-                                 "plus the implicit surface where the Jacobian vanishes (part 6)");
+                                 "plus the implicit surface where the Jacobian vanishes (part 6); of a simplex spline volume, the image "
+                                 "of its domain's boundary (part 17) and, with --iso-attribute, attribute isosurfaces (part 16)");
   auto a = std::make_shared<BoundaryArguments>();
   a->input = add_model_input(cmd);
   cmd->add_option("-o,--output", a->out, "mesh file: .ply (x y z u v w, face part), .obj or .stl")->required();
@@ -151,6 +223,12 @@ void add_boundary_command(CLI::App& app) {
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (implicit surface in orange)");
   cmd->add_option("--size", a->size, "picture size W,H in pixels (default 800,600)");
+  cmd->add_option("--iso-attribute", a->iso_attribute,
+                  "a simplex_spline_volume: also its isosurface NAME:VALUE of an attribute (repeatable; the domain boundary s(dOmega) "
+                  "is always written, part 17)");
+  cmd->add_option("--iso-edge", a->iso_edge,
+                  "a simplex_spline_volume: the longest sampling edge in the domain (default: its bounding-box diagonal / 40)")
+      ->check(CLI::PositiveNumber);
   cmd->callback([a] { run_boundary(*a); });
 }
 

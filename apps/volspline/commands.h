@@ -36,7 +36,14 @@ void add_sweep_envelope_command(CLI::App& app);
 class DemoRun;
 /// Writes the boundary-determination examples of `demo` (those it wants) and adds them to its gallery.
 void write_boundary_demo(DemoRun& demo);
-/// The simplex-spline example of `demo` (demo_simplex.cpp).
-void write_simplex_demo(DemoRun& demo);
+/// Where the simplex-spline examples of `demo` find their input files.
+struct SimplexDemoInputs {
+  /// The repository's examples/ (torus-surface.off, skeletons/).
+  std::filesystem::path examples = "examples";
+  /// The shared data folder holding volumes/bunny00.off (Fig. 6 is skipped without it).
+  std::filesystem::path data = "../shared/data";
+};
+/// The simplex-spline examples of `demo` (demo_simplex.cpp): Hua-He-Qin Figs. 1, 5 and 6.
+void write_simplex_demo(DemoRun& demo, const SimplexDemoInputs& inputs);
 
 }  // namespace volspline::cli

@@ -32,6 +32,11 @@ void add_demo_command(CLI::App& app) {
   auto only = std::make_shared<std::vector<std::string>>();
   cmd->add_option("--out", *dir, "output folder (created if missing; default out/demo)");
   cmd->add_option("--only", *only, "write only the examples with these names (index.html is then not written)");
+  auto simplex_inputs = std::make_shared<SimplexDemoInputs>();
+  cmd->add_option("--examples", simplex_inputs->examples,
+                  "the repository's examples folder, where Hua-He-Qin Figs. 5 and 6 find their surface and skeletons (default examples)");
+  cmd->add_option("--data", simplex_inputs->data,
+                  "the shared data folder with volumes/bunny00.off for Hua-He-Qin Fig. 6 (default ../shared/data; skipped if absent)");
   cmd->callback([=] {
     std::error_code ec;
     std::filesystem::create_directories(*dir, ec);
@@ -104,7 +109,7 @@ void add_demo_command(CLI::App& app) {
     write_boundary_demo(demo);
     write_blend_demo(demo);  // Peters-Wittman blends, figures 1a-4c
     write_view_demo(demo);   // Lasser §IV: isoparametric surfaces, slices, cutaways, colouring
-    write_simplex_demo(demo);  // Hua-He-Qin Fig. 1
+    write_simplex_demo(demo, *simplex_inputs);  // Hua-He-Qin Figs. 1, 5, 6
     demo.check_selection();
     if (!demo.selective()) {
       demo.gallery().write(*dir);

@@ -12,6 +12,7 @@
 #include "progress_bar.h"
 #include "view_command.h"
 #include "volspline/core/error.h"
+#include "volspline/core/format.h"
 #include "volspline/core/progress.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_formats.h"
@@ -138,6 +139,11 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
                        (std::string(option) == "--faces" && a.faces) || (std::string(option) == "--cutaway" && a.cutaway);
     if (given) throw InvalidInput(std::string(option) + " works on tensor-product volumes; a simplex_spline_volume takes --iso-attribute, --slices and --plane", option);
   }
+  if (a.iso_attribute.empty() && (a.iso_edge != 0 || a.iso_subdivisions != 0))
+    throw InvalidInput("--iso-edge and --iso-subdivisions set how --iso-attribute samples; give --iso-attribute NAME:VALUE",
+                       a.iso_edge != 0 ? "--iso-edge" : "--iso-subdivisions");
+  if (a.iso_edge != 0 && a.iso_subdivisions != 0)
+    throw InvalidInput("give either --iso-edge (local bisection) or --iso-subdivisions (uniform), not both", "--iso-edge");
   if (a.iso_attribute.empty() && a.slices.empty() && a.planes.empty() && a.cells == 0)
     throw InvalidInput("a simplex_spline_volume is shown by isosurfaces (--iso-attribute NAME:VALUE), slices (--slices AXIS:N, "
                        "--plane NX,NY,NZ,D) and shrunken cells (--cells K), or use `volspline xray`",
@@ -152,6 +158,8 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
     SimplexIsosurfaceOptions options;
     options.attribute = text.substr(0, colon);
     options.value = parse_numbers(text.substr(colon + 1), 1, "--iso-attribute")[0];
+    options.target_edge = a.iso_edge;
+    options.subdivisions = a.iso_subdivisions;
     const SimplexIsosurface surface = [&] {
       try {
         return simplex_isosurface(volume, options);
@@ -161,7 +169,9 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
     }();
     mesh.append(surface.mesh);
     scalars.insert(scalars.end(), surface.mesh.num_vertices(), options.value);
-    summary += "; " + text + ": " + std::to_string(surface.mesh.num_triangles()) + " triangles (k = " + std::to_string(surface.subdivisions) + ")";
+    summary += "; " + text + ": " + std::to_string(surface.mesh.num_triangles()) + " triangles from " +
+               std::to_string(surface.sampled_tetrahedra) + " tetrahedra (" +
+               (surface.subdivisions > 0 ? "k = " + std::to_string(surface.subdivisions) : std::string("local bisection")) + ")";
   }
   if (a.cells > 0) {
     const TriangleMesh cells = simplex_cell_mesh(volume, a.cells);
@@ -233,6 +243,9 @@ void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
       if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) return run_simplex_view(a, *volume, out);
     if (!a.iso_attribute.empty()) throw InvalidInput(a.model + " has no simplex_spline_volume object", "--iso-attribute");
   }
+  if (a.iso_edge != 0 || a.iso_subdivisions != 0)
+    throw InvalidInput("--iso-edge and --iso-subdivisions sample the isosurfaces of a simplex_spline_volume (--iso-attribute)",
+                       a.iso_edge != 0 ? "--iso-edge" : "--iso-subdivisions");
   const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
   if (mesh_format == MeshFormat::Stl && !a.color.empty())
     throw InvalidInput("STL cannot carry the colouring; use .ply or .glb", "--mesh");
@@ -268,6 +281,8 @@ std::string view_command_line(const ViewArguments& a) {
   option("--core", a.core);
   for (const auto& s : a.paddlewheels) option("--paddlewheel", s);
   for (const auto& s : a.iso_attribute) option("--iso-attribute", s);
+  if (a.iso_edge != 0) option("--iso-edge", format_double(a.iso_edge));
+  if (a.iso_subdivisions != 0) option("--iso-subdivisions", std::to_string(a.iso_subdivisions));
   if (a.cells > 0) option("--cells", std::to_string(a.cells));
   if (a.faces) c += " --faces";
   if (a.cutaway) c += " --cutaway";
@@ -306,6 +321,13 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--cells", a->cells, "a simplex_spline_volume's solid as K x K x K shrunken cells per tetrahedron (Hua-He-Qin Fig. 1b)")
       ->check(CLI::Range(0, 16));
   cmd->add_option("--iso-attribute", a->iso_attribute, "a simplex_spline_volume's isosurface NAME:VALUE of an attribute (repeatable)");
+  cmd->add_option("--iso-edge", a->iso_edge,
+                  "with --iso-attribute: the domain tetrahedra are bisected, longest edge first, until every edge is at most L "
+                  "(domain units; default: the domain's bounding-box diagonal / 40); large tetrahedra are refined, small ones not")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--iso-subdivisions", a->iso_subdivisions,
+                  "with --iso-attribute: instead cut every domain tetrahedron alike into K x K x K sub-tetrahedra (uniform)")
+      ->check(CLI::Range(1, 64));
   cmd->add_option("--mesh", a->mesh, "also write the shown surfaces: .ply (with the field as a vertex property), .obj, .glb (field colours)");
   cmd->add_option("--resolution", a->resolution, "segments per parameter direction, plus every knot (default 32)")->check(CLI::Range(1, 512));
   cmd->add_option("--camera", a->camera, "view direction DX,DY,DZ, optionally followed by an up vector UX,UY,UZ");

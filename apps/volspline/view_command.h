@@ -16,6 +16,10 @@ struct ViewArguments {
   std::vector<std::string> iso, slices, planes, paddlewheels;
   /// Isosurfaces ATTRIBUTE:VALUE of a simplex spline volume (repeatable).
   std::vector<std::string> iso_attribute;
+  /// Their sampling: the longest edge after local longest-edge bisection (domain units; 0: the
+  /// library's default), or k³ sub-tetrahedra per domain tetrahedron alike (0: local bisection).
+  double iso_edge = 0;
+  int iso_subdivisions = 0;
   /// Cells per tetrahedron edge of a simplex spline volume shown shrunken (0: none).
   int cells = 0;
   int resolution = 32;

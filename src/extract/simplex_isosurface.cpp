@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <string>
 #include <unordered_map>
 
 #include <Eigen/Dense>
@@ -13,6 +14,7 @@
 
 #include "simplex_lattice.h"
 #include "volspline/core/error.h"
+#include "volspline/mesh/longest_edge_bisection.h"
 #include "volspline/mesh/marching_tetrahedra.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
 
@@ -22,12 +24,27 @@ SimplexIsosurface simplex_isosurface(const DmsSplineVolume& volume, const Simple
   if (volume.attribute_names().empty()) throw InvalidInput("the volume has no attributes to take an isosurface of");
   const int column = options.attribute.empty() ? 3 : volume.attribute_column(options.attribute);
   const TetrahedralMesh& domain = volume.domain();
-  const int k = options.subdivisions > 0 ? options.subdivisions
-                                         : automatic_lattice_subdivisions(domain, options.target_edge, options.max_subdivisions);
-  if (k < 1 || k > 64) throw InvalidInput("expected 1 to 64 subdivisions per tetrahedron edge, got " + std::to_string(k));
-  const SimplexLattice lattice = simplex_lattice(domain, k);
-  const std::vector<Eigen::Vector3d>& sample_points = lattice.points;
-  const std::vector<std::array<std::int64_t, 4>>& sub_tetrahedra = lattice.tetrahedra;
+  if (options.subdivisions < 0 || options.subdivisions > 64)
+    throw InvalidInput("expected 1 to 64 subdivisions per tetrahedron edge, got " + std::to_string(options.subdivisions));
+  if (!(options.target_edge >= 0) || !std::isfinite(options.target_edge))
+    throw InvalidInput("expected a target edge length >= 0, got " + std::to_string(options.target_edge));
+  std::vector<Eigen::Vector3d> sample_points;
+  std::vector<std::array<std::int64_t, 4>> sub_tetrahedra;
+  const int k = options.subdivisions;
+  if (k > 0) {
+    SimplexLattice lattice = simplex_lattice(domain, k);
+    sample_points = std::move(lattice.points);
+    sub_tetrahedra = std::move(lattice.tetrahedra);
+  } else {
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& p : domain.points) box.extend(p);
+    LongestEdgeBisectionOptions bisection;
+    bisection.target_edge = options.target_edge > 0 ? options.target_edge : box.diagonal().norm() / 40;
+    LongestEdgeBisection refined = bisect_longest_edges(domain, bisection);
+    sample_points = std::move(refined.mesh.points);
+    sub_tetrahedra.reserve(refined.mesh.tetrahedra.size());
+    for (const auto& t : refined.mesh.tetrahedra) sub_tetrahedra.push_back({t[0], t[1], t[2], t[3]});
+  }
 
   // The attribute at every sample.
   std::vector<double> samples(sample_points.size());
@@ -51,6 +68,7 @@ SimplexIsosurface simplex_isosurface(const DmsSplineVolume& volume, const Simple
 
   SimplexIsosurface result;
   result.subdivisions = k;
+  result.sampled_tetrahedra = static_cast<long long>(sub_tetrahedra.size());
   const std::size_t vertices = marching.vertices().size();
   std::vector<Eigen::Vector3d> domain_points(vertices), positions(vertices), normals(vertices);
   std::vector<double> residuals(vertices, 0.0);

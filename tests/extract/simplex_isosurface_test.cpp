@@ -4,11 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include "support/graded_domain.h"
 #include "support/simplex_domains.h"
 #include "volspline/core/error.h"
 #include "volspline/extract/simplex_isosurface.h"
 #include "volspline/extract/simplex_slices.h"
+#include "volspline/mesh/longest_edge_bisection.h"
 #include "volspline/mesh/mesh_checks.h"
+#include "volspline/simplex/dms_spline_evaluator.h"
+#include "volspline/simplex/knot_clouds.h"
 
 namespace volspline {
 namespace {
@@ -74,6 +78,45 @@ TEST(SimplexIsosurface, LinearAttributeGivesAPlaneAcrossTetrahedraOfEveryDegree)
         EXPECT_TRUE((p.array() >= -1e-12).all() && (p.array() <= 1 + 1e-12).all());
       }
   }
+}
+
+// Fig. 13's local upsampling on a domain whose tetrahedra differ in size by a factor of about 30
+// (a cluster of small ones in a corner, large ones around it): longest-edge bisection refines only
+// the large ones, and the surface of a closed level set inside
+// Ω is still closed (every edge shared by two triangles, consistently oriented), exact, and made
+// from far fewer tetrahedra than uniform refinement to the same finest edge.
+TEST(SimplexIsosurface, LocalBisectionOnGradedDomainIsClosedExactAndCheaperThanUniform) {
+  TetrahedralMesh domain = test_support::clustered_cube_domain();
+  const std::size_t domain_tetrahedra = domain.tetrahedra.size();
+  const double longest = longest_edge_length(domain);
+  KnotClouds clouds = generate_knot_clouds(domain, 2);
+  DmsSplineVolume v(std::move(domain), std::move(clouds), DmsControlSharing::Shared, {"density"});
+  const Eigen::Vector3d c(0.5, 0.48, 0.52);
+  set_column_from_blossom(v, 3, [&](std::span<const Eigen::Vector3d> a) { return sphere_blossom(a, c); });
+  SimplexIsosurfaceOptions options;
+  options.value = 0.3 * 0.3;
+  options.target_edge = 0.1;
+  const SimplexIsosurface s = simplex_isosurface(v, options);
+  ASSERT_GT(s.mesh.num_triangles(), 200u);
+  EXPECT_EQ(s.subdivisions, 0);
+  DmsSplineEvaluator evaluator(v);
+  for (std::size_t i = 0; i < s.mesh.num_vertices(); ++i) {
+    // On the spline's level set, to 1e-9 of the attribute's size (evaluated independently).
+    const Eigen::Vector3d x = s.mesh.parameters[i];
+    EXPECT_NEAR(evaluator.evaluate(x).value[3], 0.09, 1e-9 * 0.09);
+    EXPECT_EQ(s.mesh.positions[i], evaluator.evaluate(x).value.head<3>());
+    // And the spline reproduces |x − c|² (to the accuracy of the basis on these slivers).
+    EXPECT_NEAR((s.mesh.positions[i] - c).squaredNorm(), 0.09, 1e-7);
+    EXPECT_NEAR(s.normals[i].dot((s.mesh.positions[i] - c).normalized()), 1.0, 1e-6);
+  }
+  EXPECT_LT(s.largest_residual, 1e-9);
+  const EdgeStatistics edges = edge_statistics(s.mesh);
+  EXPECT_TRUE(edges.closed_and_oriented()) << "boundary edges " << edges.boundary_edges << ", inconsistent "
+                                           << edges.inconsistently_oriented_edges << ", nonmanifold " << edges.nonmanifold_edges;
+  EXPECT_NEAR(enclosed_volume(s.mesh), 4.0 / 3.0 * M_PI * 0.027, 0.05 * 0.113);
+  // Uniform refinement to the same finest edge cuts every tetrahedron into k³, k = longest / target.
+  const auto k = static_cast<long long>(std::ceil(longest / options.target_edge));
+  EXPECT_LT(4 * s.sampled_tetrahedra, k * k * k * static_cast<long long>(domain_tetrahedra));
 }
 
 TEST(SimplexIsosurface, RefusesVolumesWithoutTheAttribute) {

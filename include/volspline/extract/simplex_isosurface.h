@@ -1,15 +1,16 @@
 #pragma once
 // Isosurfaces of an attribute of a DMS spline volume by marching tetrahedra over its domain
-// (Hua–He–Qin §6.2): each domain tetrahedron is upsampled (Fig. 13) into k³ tetrahedra by the
-// edgewise subdivision of its barycentric lattice, vertices are placed on the spline itself by
-// root finding along the sub-tetrahedra's edges (not by linear interpolation), mapped by the
-// volume's geometry, and normals come from the analytic gradient.
+// (Hua–He–Qin §6.2): the domain tetrahedra are upsampled (Fig. 13), vertices are placed on the
+// spline itself by root finding along the sampling tetrahedra's edges (not by linear
+// interpolation), mapped by the volume's geometry, and normals come from the analytic gradient.
 //
-// Crack-free: the edgewise subdivision of a tetrahedron depends only on the order of its
-// vertices, and restricted to a face it is the edgewise subdivision of that face; every domain
-// tetrahedron orders its vertices by their global index, so two tetrahedra sharing a face
-// subdivide it alike, and every tetrahedron the surface crosses uses the same k (a different k
-// on the two sides of a face would leave cracks). Docs: docs/simplex-splines.md.
+// Upsampling, crack-free either way (docs/simplex-splines.md, "Isosurfaces"):
+// - by default, locally: conforming longest-edge bisection (mesh/longest_edge_bisection.h) until
+//   every edge is at most the target; large tetrahedra are refined, small ones left alone, and
+//   the refined mesh is conforming, so neighbours share every sampled edge;
+// - with `subdivisions` = k, uniformly: every domain tetrahedron cut into k³ by the edgewise
+//   subdivision of its barycentric lattice, vertices in the order of their global indices, so two
+//   tetrahedra sharing a face subdivide it alike (the same k everywhere).
 #include <string>
 #include <vector>
 
@@ -24,12 +25,12 @@ struct SimplexIsosurfaceOptions {
   /// The attribute; empty: the first one.
   std::string attribute;
   double value = 0;
-  /// k, the sub-tetrahedra per edge of each domain tetrahedron; 0: chosen so that the longest
-  /// sub-edge is at most target_edge.
+  /// k > 0: every domain tetrahedron cut into k³ alike (uniform). 0: local longest-edge
+  /// bisection to target_edge.
   int subdivisions = 0;
-  /// 0: the domain's bounding-box diagonal / 40.
+  /// The longest sampling edge (domain units); 0: the domain's bounding-box diagonal / 40.
   double target_edge = 0;
-  /// The largest automatic k.
+  /// Unused since the default became local bisection; kept for callers that set it.
   int max_subdivisions = 12;
   /// Root finding along edges (true) or the linear interpolation of marching tetrahedra (false).
   bool exact_vertices = true;
@@ -42,15 +43,18 @@ struct SimplexIsosurface {
   /// Unit normals per vertex in the physical space: J^{-T} ∇g normalised (J = ds/dx), pointing
   /// towards larger values.
   std::vector<Eigen::Vector3d> normals;
+  /// k of the uniform lattice; 0 for local bisection.
   int subdivisions = 0;
+  /// The tetrahedra marched (k³ per domain tetrahedron, or the bisected mesh's).
+  long long sampled_tetrahedra = 0;
   /// Spline evaluations (samples and root-finding steps).
   long long evaluations = 0;
   /// The largest |g(x) − value| at a vertex, relative to the attribute's range over the samples.
   double largest_residual = 0;
 };
 
-/// \throw InvalidInput for an unknown attribute, a volume without attributes, or a k outside
-/// 1..64.
+/// \throw InvalidInput for an unknown attribute, a volume without attributes, a k outside 1..64,
+/// a negative target edge or one so short that bisection would make over 4 million tetrahedra.
 SimplexIsosurface simplex_isosurface(const DmsSplineVolume& volume, const SimplexIsosurfaceOptions& options = {});
 
 }  // namespace volspline
