@@ -225,6 +225,32 @@ PointCloudDomain point_cloud_domain(std::span<const Eigen::Vector3d> points, con
   TetrahedralMesh delaunay;
   try {
     delaunay = delaunay_tetrahedralization(knots);
+    if (options.jitter > 0) {
+      // Grid data are cospherical and coplanar in exact arithmetic, but their coordinates
+      // (like 0.95) are rounded, so Delaunay keeps tetrahedra that are flat up to rounding,
+      // for which no knot clouds are valid. The knots inside the hull move by `jitter` of their
+      // shortest edge in a direction fixed by their index (deterministic); hull vertices stay,
+      // so that Ω still spans the data's hull.
+      const std::vector<bool> boundary = boundary_vertices(delaunay);
+      std::vector<double> shortest(knots.size(), INFINITY);
+      for (const auto& t : delaunay.tetrahedra)
+        for (int a = 0; a < 4; ++a)
+          for (int b = a + 1; b < 4; ++b) {
+            const auto u = static_cast<std::size_t>(t[static_cast<std::size_t>(a)]), w = static_cast<std::size_t>(t[static_cast<std::size_t>(b)]);
+            const double e = (knots[u] - knots[w]).norm();
+            shortest[u] = std::min(shortest[u], e);
+            shortest[w] = std::min(shortest[w], e);
+          }
+      for (std::size_t v = 0; v < knots.size(); ++v) {
+        if (boundary[v] || !std::isfinite(shortest[v])) continue;
+        // Spherical Fibonacci direction of the index: well spread, no randomness.
+        const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
+        const double z = 1 - 2 * (static_cast<double>(v % 1024) + 0.5) / 1024;
+        const double r = std::sqrt(1 - z * z), angle = golden * static_cast<double>(v);
+        knots[v] += options.jitter * shortest[v] * Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), z);
+      }
+      delaunay = delaunay_tetrahedralization(knots);
+    }
   } catch (const InvalidInput& e) {
     throw InvalidInput("the primary knots: " + e.message(), "points");
   }

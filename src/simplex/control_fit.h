@@ -29,8 +29,14 @@ Eigen::SparseMatrix<double> basis_matrix(const DmsSplineVolume& volume, const st
 struct ControlFitOptions {
   /// λ as a fraction of the mean diagonal of AᵀA.
   double regularisation = 1e-8;
-  /// Iterated Tikhonov steps after the first solve (0: the plain regularised solution).
+  /// Iterated Tikhonov steps after the first solve, at most (0: the plain regularised
+  /// solution); they stop early once a step changes no entry by more than 1e-15 of the largest.
   int refinement_steps = 0;
+  /// Up to this many control vectors: SimplicialLDLT; above: conjugate gradients with an
+  /// incomplete Cholesky preconditioner, to this relative residual.
+  Eigen::Index direct_limit = 8000;
+  double iterative_tolerance = 1e-12;
+  int iterative_max_iterations = 5000;
 };
 
 /// The control columns minimising |A c − targets|² + λ |c − prior|² (then refined), one column

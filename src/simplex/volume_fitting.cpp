@@ -11,6 +11,20 @@
 namespace volspline {
 namespace {
 
+class PhaseClock {
+ public:
+  explicit PhaseClock(std::vector<FitPhase>& phases) : phases_(phases), start_(std::chrono::steady_clock::now()) {}
+  void done(const std::string& name) {
+    const auto now = std::chrono::steady_clock::now();
+    phases_.push_back({name, std::chrono::duration<double>(now - start_).count()});
+    start_ = now;
+  }
+
+ private:
+  std::vector<FitPhase>& phases_;
+  std::chrono::steady_clock::time_point start_;
+};
+
 // Values of all columns of the volume at the data points (rows outside Ω: 0) and whether each
 // point lies in Ω (its basis functions sum to 1 there, to 0 outside).
 struct Collocation {
@@ -84,26 +98,17 @@ VolumeFitErrors errors_at(const Eigen::MatrixXd& values, const VolumeData& data,
   return e;
 }
 
-class PhaseClock {
- public:
-  explicit PhaseClock(std::vector<FitPhase>& phases) : phases_(phases), start_(std::chrono::steady_clock::now()) {}
-  void done(const std::string& name) {
-    const auto now = std::chrono::steady_clock::now();
-    phases_.push_back({name, std::chrono::duration<double>(now - start_).count()});
-    start_ = now;
-  }
-
- private:
-  std::vector<FitPhase>& phases_;
-  std::chrono::steady_clock::time_point start_;
-};
 
 }  // namespace
 
-VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& data, const ControlVectorFitOptions& options) {
+VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& data, const ControlVectorFitOptions& options,
+                                    std::vector<FitPhase>* phases) {
   validate_volume_data(data, "the data");
+  std::vector<FitPhase> ignored;
+  PhaseClock clock(phases ? *phases : ignored);
   const std::vector<int> columns = attribute_columns(volume, data);
   const Collocation c = collocation(volume, data);
+  clock.done("basis matrix");
   const std::size_t fitted = static_cast<std::size_t>(std::count(c.inside.begin(), c.inside.end(), true));
   if (fitted < static_cast<std::size_t>(volume.control_vector_count()))
     throw InvalidInput(std::to_string(fitted) + " of the " + std::to_string(data.size()) +
@@ -125,10 +130,13 @@ VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& d
       if (c.inside[static_cast<std::size_t>(i)]) sum += data.attributes(i, static_cast<Eigen::Index>(a));
     prior.col(3 + static_cast<Eigen::Index>(a)).setConstant(sum / static_cast<double>(fitted));
   }
-  const Eigen::MatrixXd solution = solve_control_columns(c.a, targets, prior, {options.regularisation, options.refinement_steps});
+  const Eigen::MatrixXd solution = solve_control_columns(c.a, targets, prior, {options.regularisation, options.refinement_steps, options.direct_limit, options.iterative_tolerance, 5000});
   control.leftCols<3>() = solution.leftCols<3>();
   for (std::size_t a = 0; a < columns.size(); ++a) control.col(columns[a]) = solution.col(3 + static_cast<Eigen::Index>(a));
-  return errors_at(c.a * control, data, c.inside, columns);
+  clock.done("solve");
+  VolumeFitErrors errors = errors_at(c.a * control, data, c.inside, columns);
+  clock.done("errors");
+  return errors;
 }
 
 VolumeFitErrors volume_fit_errors(const DmsSplineVolume& volume, const VolumeData& data) {
@@ -163,8 +171,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
   }
   DmsSplineVolume volume(std::move(domain.mesh), std::move(clouds), DmsControlSharing::Shared);
   statistics.control_points = static_cast<std::size_t>(volume.control_vector_count());
-  statistics.errors = fit_control_vectors(volume, data, options.fit);
-  clock.done("least squares");
+  statistics.errors = fit_control_vectors(volume, data, options.fit, &statistics.phases);
   return {std::move(volume), std::move(statistics)};
 }
 

@@ -91,7 +91,10 @@ TEST(PointCloudDomain, CubeOfPointsGivesTheCubeWithItsCornersEdgesAndFaces) {
   int corners = 0;
   for (std::size_t v = 0; v < domain.mesh.points.size(); ++v) {
     const Eigen::Vector3d& x = domain.mesh.points[v];
-    EXPECT_EQ(x, points[static_cast<std::size_t>(domain.data_index[v])]);
+    // The jitter moves interior knots by 1 % of an edge; the hull's stay where the data are.
+    const Eigen::Vector3d& data_point = points[static_cast<std::size_t>(domain.data_index[v])];
+    if (domain.kinds[v] == VertexKind::Interior) EXPECT_LE((x - data_point).norm(), 0.01 * std::sqrt(3.0));
+    else EXPECT_EQ(x, data_point);
     int on = 0;
     for (int a = 0; a < 3; ++a) on += x[a] == 0 || x[a] == 1;
     const double expected[] = {4 * std::numbers::pi, 2 * std::numbers::pi, std::numbers::pi, std::numbers::pi / 2};

@@ -63,6 +63,18 @@ TEST(VolumeFitting, SamplesOfPolynomialsOfDegreeAtMostNAreReproduced) {
   }
 }
 
+TEST(VolumeFitting, TheIterativeSolverReproducesPolynomialsToo) {
+  // Conjugate gradients (used above 8,000 control vectors) forced on a small problem.
+  VolumeData data = sampled_volume_data(random_points(3000, 12), "f", [](const Eigen::Vector3d& x) { return polynomial(x, 2); });
+  VolumeFitOptions options;
+  options.degree = 2;
+  options.domain.primary_knots = 30;
+  options.fit.direct_limit = 0;
+  const VolumeFit fit = fit_volume_data(data, options);
+  EXPECT_LE(fit.statistics.errors.attributes[0].max_abs, 1e-10);
+  EXPECT_LE(std::sqrt(fit.statistics.errors.geometric_max), 1e-10);
+}
+
 TEST(VolumeFitting, ErrorsAreReportedRawAndNormalisedByTheDataRange) {
   // A degree-1 fit of a quadratic: the normalised errors are the raw ones over the range.
   VolumeData data = sampled_volume_data(random_points(2000, 3), "q", [](const Eigen::Vector3d& x) { return 10 * x.squaredNorm(); });

@@ -68,6 +68,10 @@ struct PointCloudDomainOptions {
   /// convex hull (when at most half the count, so that Ω covers the data's hull) followed by
   /// farthest-point samples.
   int primary_knots = 0;
+  /// Knots inside the hull of the primary knots move by this fraction of their shortest Delaunay
+  /// edge (deterministic directions) before the final Delaunay: grid data would otherwise give
+  /// tetrahedra flat up to rounding, for which no knot clouds are valid. 0: no move.
+  double jitter = 1e-2;
   /// Remove the Delaunay tetrahedra with an edge midpoint outside the occupancy map.
   bool clip_to_occupancy = true;
 };
@@ -75,7 +79,8 @@ struct PointCloudDomainOptions {
 struct PointCloudDomain {
   /// The domain: positively oriented, every point used.
   TetrahedralMesh mesh;
-  /// For each point of the mesh, the index of the data point it is.
+  /// For each point of the mesh, the index of the data point it is (or was moved from by the
+  /// jitter).
   std::vector<int> data_index;
   std::vector<VertexKind> kinds;
   /// Tetrahedra of the Delaunay tetrahedralisation before clipping.

@@ -13,6 +13,12 @@
 
 namespace volspline {
 
+/// How long each phase took (seconds of wall-clock time).
+struct FitPhase {
+  std::string name;
+  double seconds = 0;
+};
+
 /// The fitting error of one attribute at the data points inside Ω.
 struct AttributeFitError {
   std::string name;
@@ -39,7 +45,11 @@ struct ControlVectorFitOptions {
   double regularisation = 1e-8;
   /// Iterated Tikhonov steps (src/simplex/control_fit.h), so that the bias of the
   /// regularisation vanishes where the data determine the coefficients.
-  int refinement_steps = 10;
+  int refinement_steps = 40;
+  /// Up to this many control vectors the normal equations are factored (SimplicialLDLT), above
+  /// it they are solved by conjugate gradients with an incomplete Cholesky preconditioner.
+  long direct_limit = 8000;
+  double iterative_tolerance = 1e-13;
 };
 
 /// Solves eq. 10 for the control vectors of `volume` with its domain and knots fixed: columns
@@ -49,7 +59,9 @@ struct ControlVectorFitOptions {
 /// coefficient no data point sees keeps.
 /// \throw InvalidInput if the data fail validate_volume_data, or fewer data points lie inside
 /// Ω than the volume has control vectors (too few points for the degree and domain).
-VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& data, const ControlVectorFitOptions& options = {});
+/// `phases`, if given, gets the time of the basis matrix, the solve and the errors.
+VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& data, const ControlVectorFitOptions& options = {},
+                                    std::vector<FitPhase>* phases = nullptr);
 
 /// The errors of `volume` at the data (as fit_control_vectors reports them).
 VolumeFitErrors volume_fit_errors(const DmsSplineVolume& volume, const VolumeData& data);
@@ -60,12 +72,6 @@ struct VolumeFitOptions {
   /// Knot cloud spread (knot_clouds.h).
   double spread = 0.15;
   ControlVectorFitOptions fit;
-};
-
-/// How long each phase took (seconds of wall-clock time).
-struct FitPhase {
-  std::string name;
-  double seconds = 0;
 };
 
 struct VolumeFitStatistics {
