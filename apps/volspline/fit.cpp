@@ -149,7 +149,7 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("-o,--output", r->out, "output model file (.json)")->required();
   cmd->add_option("--degree", r->degree, "the degree n, 1 to 5 (default 2)");
   cmd->add_option("--attributes", r->attributes, "the attributes to fit, comma-separated (default: all)");
-  cmd->add_option("--primary-knots", r->primary_knots, "the number of primary knots (domain vertices; default: points / 24)");
+  cmd->add_option("--primary-knots", r->primary_knots, "the number of primary knots (domain vertices; default: points / (2 (n+1)(n+2)), points / 24 for degree 2)");
   cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
   cmd->callback([r] { fit_file(*r); });
 }

@@ -153,7 +153,14 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
   validate_volume_data(data, "the data");
   VolumeFitStatistics statistics;
   PhaseClock clock(statistics.phases);
-  PointCloudDomain domain = point_cloud_domain(data.points, options.domain);
+  PointCloudDomainOptions domain_options = options.domain;
+  if (domain_options.primary_knots == 0) {
+    // About 1, 7.5, 24, 55 control vectors per vertex for degrees 1..4: this keeps them below
+    // the number of points (0.08, 0.31, 0.6, 0.9 per point).
+    const int n = options.degree;
+    domain_options.primary_knots = std::max(4, static_cast<int>(data.size() / static_cast<std::size_t>(2 * (n + 2) * (n + 1))));
+  }
+  PointCloudDomain domain = point_cloud_domain(data.points, domain_options);
   clock.done("domain");
   KnotCloudOptions cloud_options;
   cloud_options.spread = options.spread;

@@ -68,6 +68,7 @@ VolumeFitErrors volume_fit_errors(const DmsSplineVolume& volume, const VolumeDat
 
 struct VolumeFitOptions {
   int degree = 2;
+  /// primary_knots 0: points / (4 C(n + 2, 2)), at least 4 (points / 24 for degree 2).
   PointCloudDomainOptions domain;
   /// Knot cloud spread (knot_clouds.h).
   double spread = 0.15;
