@@ -32,6 +32,7 @@ void add_boundary_command(CLI::App& app);
 void add_blend_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 void add_sweep_envelope_command(CLI::App& app);
+void add_fit_command(CLI::App& app);
 
 class DemoRun;
 /// Writes the boundary-determination examples of `demo` (those it wants) and adds them to its gallery.

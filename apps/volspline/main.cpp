@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   volspline::cli::add_sweep_envelope_command(app);
   volspline::cli::add_xray_command(app);
   volspline::cli::add_split_tetrahedron_command(app);
+  volspline::cli::add_fit_command(app);
   volspline::cli::add_demo_command(app);
   auto& flags = volspline::cli::global_flags();
   auto* verbose = app.add_flag("-v,--verbose", flags.verbose, "print the duration of every phase of the work on stderr");

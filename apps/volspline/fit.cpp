@@ -1,0 +1,157 @@
+// volspline fit DATA -o MODEL.json --degree N [--attributes a,b] [--primary-knots K] [--stats S.json]
+// Fits scattered volume data with a trivariate DMS simplex spline (Hua–He–Qin §5.1–5.2, eq. 10;
+// simplex/volume_fitting.h): domain from the data, generated knot clouds, geometry and
+// attributes by least squares. DATA is a file (io/volume_data.h) or a generated data set:
+// marschner-lobb:N (N³ samples on [−1, 1]³) or two-material:N.
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
+#include "commands.h"
+#include "volspline/construct/volume_data_examples.h"
+#include "volspline/core/error.h"
+#include "volspline/core/format.h"
+#include "volspline/io/atomic_file.h"
+#include "volspline/io/model_file.h"
+#include "volspline/io/volume_data.h"
+#include "volspline/simplex/volume_fitting.h"
+
+namespace volspline::cli {
+namespace {
+
+struct FitRequest {
+  std::string data, out, attributes, stats;
+  int degree = 2;
+  int primary_knots = 0;
+};
+
+VolumeData data_of(const std::string& name) {
+  for (const std::string kind : {"marschner-lobb:", "two-material:"}) {
+    if (name.rfind(kind, 0) != 0) continue;
+    const std::string count = name.substr(kind.size());
+    int n = 0;
+    try {
+      std::size_t used = 0;
+      n = std::stoi(count, &used);
+      if (used != count.size()) n = 0;
+    } catch (const std::exception&) {
+      n = 0;
+    }
+    if (n < 2 || n > 400) throw InvalidInput("expected " + kind + "N with N in 2..400, got '" + name + "'", "DATA");
+    return kind == "marschner-lobb:" ? marschner_lobb_data(n) : two_material_data(n);
+  }
+  return read_volume_data(name);
+}
+
+std::vector<std::string> split_names(const std::string& list) {
+  std::vector<std::string> names;
+  std::size_t start = 0;
+  while (start <= list.size() && !list.empty()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    names.push_back(list.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return names;
+}
+
+nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& data, int degree) {
+  nlohmann::json j;
+  const VolumeFitErrors& e = s.errors;
+  j["data"] = data;
+  j["degree"] = degree;
+  j["data_points"] = s.data_points;
+  j["fitted_points"] = e.fitted_points;
+  j["outside_points"] = e.outside_points;
+  j["delaunay_tetrahedra"] = s.delaunay_tetrahedra;
+  j["domain_tetrahedra"] = s.domain_tetrahedra;
+  j["control_points"] = s.control_points;
+  j["primary_knots"] = s.primary_knots;
+  j["knots"] = s.knots;
+  j["coefficients_per_data_point"] = static_cast<double>(s.control_points) / static_cast<double>(std::max<std::size_t>(1, s.data_points));
+  j["boundary_vertices"] = {{"corner", s.corner_vertices}, {"curve", s.curve_vertices}, {"general", s.general_vertices}};
+  j["geometric_error"] = {{"mean_square", e.geometric_mean_square},
+                          {"max_square", e.geometric_max},
+                          {"scale", e.geometric_scale},
+                          {"normalised_mean_square", e.normalised_geometric_mean_square},
+                          {"normalised_max_square", e.normalised_geometric_max}};
+  nlohmann::json fields = nlohmann::json::array();
+  for (const auto& f : e.attributes)
+    fields.push_back({{"attribute", f.name},
+                      {"data_min", f.data_min},
+                      {"data_max", f.data_max},
+                      {"mean_square", f.mean_square},
+                      {"max_abs", f.max_abs},
+                      {"normalised_mean_square", f.normalised_mean_square},
+                      {"normalised_max_abs", f.normalised_max_abs}});
+  j["field_errors"] = fields;
+  nlohmann::json phases = nlohmann::json::object();
+  double total = 0;
+  for (const auto& p : s.phases) phases[p.name] = p.seconds, total += p.seconds;
+  j["seconds"] = phases;
+  j["seconds_total"] = total;
+  j["knot_optimisation"] = "not yet (Hua-He-Qin 5.3)";
+  j["adaptive_refinement"] = "not yet (Hua-He-Qin 5.4)";
+  return j;
+}
+
+void fit_file(const FitRequest& r) {
+  VolumeData data = data_of(r.data);
+  try {
+    data = select_attributes(data, split_names(r.attributes));
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(e.message(), "--attributes");
+  }
+  if (data.attribute_names.empty()) throw InvalidInput(r.data + " has no attributes to fit (only x, y, z)", "DATA");
+  VolumeFitOptions options;
+  options.degree = r.degree;
+  options.domain.primary_knots = r.primary_knots;
+  if (r.primary_knots < 0) throw InvalidInput("expected a positive number of primary knots, got " + std::to_string(r.primary_knots), "--primary-knots");
+  VolumeFit fit = [&] {
+    try {
+      return fit_volume_data(data, options);
+    } catch (const InvalidInput& e) {
+      if (e.where() == "degree") throw InvalidInput(e.message(), "--degree");
+      throw InvalidInput(e.message(), r.data + (e.where().empty() ? "" : ": " + e.where()));
+    }
+  }();
+  const VolumeFitStatistics statistics = fit.statistics;
+  Model model;
+  model.objects.push_back({"fitted " + r.data, false, std::move(fit.volume), nullptr});
+  write_model(model, r.out);
+  if (!r.stats.empty()) write_file_atomically(r.stats, statistics_json(statistics, r.data, r.degree).dump(2) + "\n");
+  const VolumeFitErrors& e = statistics.errors;
+  std::cout << "wrote " << r.out << ": degree " << r.degree << " simplex spline fitted to " << e.fitted_points << " of " << e.data_points
+            << " points (" << e.outside_points << " outside the domain), " << statistics.domain_tetrahedra << " tetrahedra, "
+            << statistics.control_points << " control points, " << statistics.knots << " knots\n";
+  std::cout << "  geometry: mean square error " << format_double(e.geometric_mean_square) << "\n";
+  for (const auto& f : e.attributes)
+    std::cout << "  " << f.name << " (data " << format_double(f.data_min) << " .. " << format_double(f.data_max) << "): mean square error "
+              << format_double(f.mean_square) << " (normalised " << format_double(f.normalised_mean_square) << "), max "
+              << format_double(f.max_abs) << " (normalised " << format_double(f.normalised_max_abs) << ")\n";
+  std::cout << "  time:";
+  for (const auto& p : statistics.phases) std::cout << " " << p.name << " " << format_double(p.seconds) << " s;";
+  std::cout << "\n";
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app) {
+  auto r = std::make_shared<FitRequest>();
+  auto* cmd = app.add_subcommand("fit", "Fit scattered volume data (points with attributes) with a trivariate simplex spline "
+                                        "(Hua-He-Qin 5: domain from the data, least squares; knot optimisation not yet)");
+  cmd->add_option("DATA", r->data,
+                  "volume data: .csv (header x,y,z,...), .ply, .vtu, .vti, .vtk, .inr, .nii, or marschner-lobb:N / two-material:N")
+      ->required();
+  cmd->add_option("-o,--output", r->out, "output model file (.json)")->required();
+  cmd->add_option("--degree", r->degree, "the degree n, 1 to 5 (default 2)");
+  cmd->add_option("--attributes", r->attributes, "the attributes to fit, comma-separated (default: all)");
+  cmd->add_option("--primary-knots", r->primary_knots, "the number of primary knots (domain vertices; default: points / (2 (n+1)(n+2)), points / 24 for degree 2)");
+  cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
+  cmd->callback([r] { fit_file(*r); });
+}
+
+}  // namespace volspline::cli

@@ -1,0 +1,30 @@
+#pragma once
+// Volume data sets made in code, for fitting tests and measurements (docs/fitting.md).
+#include <functional>
+
+#include <Eigen/Core>
+
+#include "volspline/io/volume_data.h"
+
+namespace volspline {
+
+/// The Marschner–Lobb test function (Marschner and Lobb 1994) on [−1, 1]³:
+/// ρ(x, y, z) = [1 − sin(π z / 2) + α (1 + cos(2π f_M cos(π r / 2)))] / (2 (1 + α)),
+/// r = √(x² + y²), f_M = 6, α = 0.25. Values lie in [0, 1].
+double marschner_lobb(const Eigen::Vector3d& x);
+
+/// ρ sampled on the n × n × n grid of [−1, 1]³ (both ends included, x fastest), attribute
+/// `rho`. \throw InvalidInput for n < 2.
+VolumeData marschner_lobb_data(int n);
+
+/// A solid of two materials with a sharp jump: the n × n × n grid of [0, 1]³, attribute
+/// `material` = 1 + 0.1 (y + z) where x + tilt·y < 0.5 and 2 + 0.1 (y + z) elsewhere: a jump
+/// of 1 across the plane x + tilt·y = 0.5 on a smooth background.
+/// \throw InvalidInput for n < 2.
+VolumeData two_material_data(int n, double tilt = 0);
+
+/// Samples f at `points`: one attribute `name`.
+VolumeData sampled_volume_data(const std::vector<Eigen::Vector3d>& points, const std::string& name,
+                               const std::function<double(const Eigen::Vector3d&)>& f);
+
+}  // namespace volspline

@@ -1,0 +1,98 @@
+#pragma once
+// Fitting scattered volume data with a trivariate DMS spline (Hua–He–Qin §5.1–5.2, eq. 10):
+// the domain from the data (mesh/point_cloud_domain.h), generated knot clouds, and the control
+// vectors — geometry and every attribute together — by least squares at the data points, whose
+// positions are their own parameters:  min Σ_i |p_i − s(x_i, y_i, z_i)|².
+// Knot optimisation (§5.3) and adaptive refinement (§5.4) are not done yet (docs/fitting.md).
+#include <string>
+#include <vector>
+
+#include "volspline/io/volume_data.h"
+#include "volspline/mesh/point_cloud_domain.h"
+#include "volspline/simplex/dms_spline_volume.h"
+
+namespace volspline {
+
+/// How long each phase took (seconds of wall-clock time).
+struct FitPhase {
+  std::string name;
+  double seconds = 0;
+};
+
+/// The fitting error of one attribute at the data points inside Ω.
+struct AttributeFitError {
+  std::string name;
+  /// The data range at those points; normalised errors divide by max − min (by 1 if constant),
+  /// i.e. they are the errors of the data mapped to [0, 1].
+  double data_min = 0, data_max = 0;
+  double mean_square = 0, max_abs = 0;
+  double normalised_mean_square = 0, normalised_max_abs = 0;
+};
+
+struct VolumeFitErrors {
+  /// Data points, those inside Ω (fitted), those outside (not fitted, not in the errors).
+  std::size_t data_points = 0, fitted_points = 0, outside_points = 0;
+  /// Mean and largest squared distance |s_xyz(x_i) − x_i|², raw and divided by the square of
+  /// the data's largest bounding-box side (geometry mapped into [0, 1]³).
+  double geometric_mean_square = 0, geometric_max = 0;
+  double normalised_geometric_mean_square = 0, normalised_geometric_max = 0;
+  double geometric_scale = 1;
+  std::vector<AttributeFitError> attributes;
+};
+
+struct ControlVectorFitOptions {
+  /// λ of the Tikhonov term as a fraction of the normal matrix's mean diagonal.
+  double regularisation = 1e-8;
+  /// Iterated Tikhonov steps (src/simplex/control_fit.h), so that the bias of the
+  /// regularisation vanishes where the data determine the coefficients.
+  int refinement_steps = 40;
+  /// Up to this many control vectors the normal equations are factored (SimplicialLDLT), above
+  /// it they are solved by conjugate gradients with an incomplete Cholesky preconditioner.
+  long direct_limit = 8000;
+  double iterative_tolerance = 1e-13;
+};
+
+/// Solves eq. 10 for the control vectors of `volume` with its domain and knots fixed: columns
+/// x, y, z fitted to the data positions and one attribute column per data attribute (added to
+/// the volume where it lacks them; the volume's other attributes are left alone). The prior of
+/// the regularisation is the identity geometry and the data mean of each attribute, which a
+/// coefficient no data point sees keeps.
+/// \throw InvalidInput if the data fail validate_volume_data, or fewer data points lie inside
+/// Ω than the volume has control vectors (too few points for the degree and domain).
+/// `phases`, if given, gets the time of the basis matrix, the solve and the errors.
+VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& data, const ControlVectorFitOptions& options = {},
+                                    std::vector<FitPhase>* phases = nullptr);
+
+/// The errors of `volume` at the data (as fit_control_vectors reports them).
+VolumeFitErrors volume_fit_errors(const DmsSplineVolume& volume, const VolumeData& data);
+
+struct VolumeFitOptions {
+  int degree = 2;
+  /// primary_knots 0: points / (4 C(n + 2, 2)), at least 4 (points / 24 for degree 2).
+  PointCloudDomainOptions domain;
+  /// Knot cloud spread (knot_clouds.h).
+  double spread = 0.15;
+  ControlVectorFitOptions fit;
+};
+
+struct VolumeFitStatistics {
+  /// Table 1 of the paper: data points, domain tetrahedra, control points, knots (all knots of
+  /// all clouds: vertices × (n + 1)), primary knots (domain vertices).
+  std::size_t data_points = 0, delaunay_tetrahedra = 0, domain_tetrahedra = 0, control_points = 0, knots = 0, primary_knots = 0;
+  /// Boundary vertices by kind (§5.2).
+  std::size_t corner_vertices = 0, curve_vertices = 0, general_vertices = 0;
+  VolumeFitErrors errors;
+  std::vector<FitPhase> phases;
+};
+
+struct VolumeFit {
+  DmsSplineVolume volume;
+  VolumeFitStatistics statistics;
+};
+
+/// The whole fit: domain, knot clouds, control vectors.
+/// \throw InvalidInput for bad data (validate_volume_data), too few or coplanar points, a degree
+/// outside 1..5, or a domain whose knot clouds cannot be made valid.
+VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& options = {});
+
+}  // namespace volspline

@@ -1,0 +1,48 @@
+#include "volspline/construct/volume_data_examples.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "volspline/core/error.h"
+
+namespace volspline {
+namespace {
+
+std::vector<Eigen::Vector3d> grid_points(int n, double lo, double hi) {
+  if (n < 2) throw InvalidInput("expected at least 2 samples per axis, got " + std::to_string(n));
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(static_cast<std::size_t>(n) * n * n);
+  const auto at = [&](int i) { return lo + (hi - lo) * i / (n - 1); };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) points.emplace_back(at(i), at(j), at(k));
+  return points;
+}
+
+}  // namespace
+
+double marschner_lobb(const Eigen::Vector3d& x) {
+  constexpr double alpha = 0.25, f_m = 6, pi = std::numbers::pi;
+  const double r = std::hypot(x.x(), x.y());
+  return (1 - std::sin(pi * x.z() / 2) + alpha * (1 + std::cos(2 * pi * f_m * std::cos(pi * r / 2)))) / (2 * (1 + alpha));
+}
+
+VolumeData sampled_volume_data(const std::vector<Eigen::Vector3d>& points, const std::string& name,
+                               const std::function<double(const Eigen::Vector3d&)>& f) {
+  VolumeData data;
+  data.points = points;
+  data.attribute_names = {name};
+  data.attributes.resize(static_cast<Eigen::Index>(points.size()), 1);
+  for (std::size_t i = 0; i < points.size(); ++i) data.attributes(static_cast<Eigen::Index>(i), 0) = f(points[i]);
+  return data;
+}
+
+VolumeData marschner_lobb_data(int n) { return sampled_volume_data(grid_points(n, -1, 1), "rho", marschner_lobb); }
+
+VolumeData two_material_data(int n, double tilt) {
+  return sampled_volume_data(grid_points(n, 0, 1), "material", [tilt](const Eigen::Vector3d& x) {
+    return (x.x() + tilt * x.y() < 0.5 ? 1.0 : 2.0) + 0.1 * (x.y() + x.z());
+  });
+}
+
+}  // namespace volspline

@@ -1,0 +1,131 @@
+// VTK datasets and NIfTI images as volume data (io/volume_data.h): the points of any dataset
+// (image data: voxel centres, origin and spacing respected) and its point data arrays, one
+// attribute per component. Errors VTK reports arrive as ErrorEvents, collected by an observer
+// instead of being printed.
+#include "volume_data_vtk.h"
+
+#include <cctype>
+#include <fstream>
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkDataSet.h>
+#include <vtkDataSetReader.h>
+#include <vtkExecutive.h>
+#include <vtkImageData.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNIFTIImageReader.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkXMLImageDataReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include "volspline/core/error.h"
+
+namespace volspline::detail {
+namespace {
+
+struct VtkErrors {
+  std::string first;
+  static void collect(vtkObject*, unsigned long event, void* client, void* call) {
+    auto* self = static_cast<VtkErrors*>(client);
+    if (event == vtkCommand::ErrorEvent && self->first.empty() && call) self->first = static_cast<const char*>(call);
+  }
+};
+
+std::string trimmed(std::string message) {
+  // VTK messages start with "ERROR: In FILE, line N\nvtkClass (0x...): " — keep what follows.
+  const auto colon = message.find("): ");
+  if (colon != std::string::npos) message = message.substr(colon + 3);
+  while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
+  return message;
+}
+
+VolumeData from_dataset(vtkDataSet* set, const std::string& source, const vtkMatrix4x4* to_world) {
+  VolumeData data;
+  const vtkIdType n = set->GetNumberOfPoints();
+  if (n == 0) throw InvalidInput("the dataset has no points", source);
+  data.points.reserve(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i) {
+    double p[3];
+    set->GetPoint(i, p);
+    if (to_world) {
+      double h[4] = {p[0], p[1], p[2], 1}, w[4];
+      const_cast<vtkMatrix4x4*>(to_world)->MultiplyPoint(h, w);
+      p[0] = w[0], p[1] = w[1], p[2] = w[2];
+    }
+    data.points.emplace_back(p[0], p[1], p[2]);
+  }
+  vtkPointData* point_data = set->GetPointData();
+  std::vector<vtkDataArray*> arrays;
+  for (int a = 0; point_data && a < point_data->GetNumberOfArrays(); ++a)
+    if (vtkDataArray* array = point_data->GetArray(a)) arrays.push_back(array);
+  int columns = 0;
+  for (vtkDataArray* array : arrays) columns += array->GetNumberOfComponents();
+  data.attributes.resize(static_cast<Eigen::Index>(n), columns);
+  int column = 0;
+  for (std::size_t a = 0; a < arrays.size(); ++a) {
+    vtkDataArray* array = arrays[a];
+    const std::string name = array->GetName() && *array->GetName() ? array->GetName() : "array_" + std::to_string(a);
+    if (array->GetNumberOfTuples() != n)
+      throw InvalidInput("point data array '" + name + "' has " + std::to_string(array->GetNumberOfTuples()) + " values, expected " +
+                             std::to_string(n) + " (one per point)",
+                         source);
+    const int components = array->GetNumberOfComponents();
+    for (int c = 0; c < components; ++c, ++column) {
+      data.attribute_names.push_back(components == 1 ? name : name + "_" + std::to_string(c));
+      for (vtkIdType i = 0; i < n; ++i) data.attributes(static_cast<Eigen::Index>(i), column) = array->GetComponent(i, c);
+    }
+  }
+  return data;
+}
+
+template <class Reader>
+VolumeData read_with(const std::filesystem::path& path, const char* expected) {
+  const std::string source = path.string();
+  VtkErrors errors;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetCallback(&VtkErrors::collect);
+  observer->SetClientData(&errors);
+  vtkNew<Reader> reader;
+  reader->AddObserver(vtkCommand::ErrorEvent, observer);
+  reader->AddObserver(vtkCommand::WarningEvent, observer);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  if constexpr (std::is_same_v<Reader, vtkXMLUnstructuredGridReader> || std::is_same_v<Reader, vtkXMLImageDataReader>) {
+    reader->SetReaderErrorObserver(observer);
+    reader->SetParserErrorObserver(observer);
+  }
+  if constexpr (!std::is_same_v<Reader, vtkDataSetReader>) {
+    if (!reader->CanReadFile(source.c_str())) throw InvalidInput(std::string("not ") + expected, source);
+  }
+  reader->SetFileName(source.c_str());
+  if constexpr (std::is_same_v<Reader, vtkDataSetReader>) {
+    reader->ReadAllScalarsOn();
+    reader->ReadAllVectorsOn();
+    reader->ReadAllTensorsOff();
+  }
+  reader->Update();
+  if (!errors.first.empty()) throw InvalidInput(trimmed(errors.first), source);
+  vtkDataSet* set = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!set) throw InvalidInput(std::string("the VTK reader produced no dataset (expected ") + expected + ")", source);
+  const vtkMatrix4x4* to_world = nullptr;
+  if constexpr (std::is_same_v<Reader, vtkNIFTIImageReader>) {
+    // NIfTI's voxel-to-world map: the sform where the file sets one, else the qform; VTK gives
+    // the voxel centres as (i, j, k) * spacing and leaves the matrix to the caller.
+    to_world = reader->GetSFormMatrix() ? reader->GetSFormMatrix() : reader->GetQFormMatrix();
+  }
+  return from_dataset(set, source, to_world);
+}
+
+}  // namespace
+
+VolumeData read_vtk_volume_data(const std::filesystem::path& path, const std::string& extension) {
+  if (!std::ifstream(path, std::ios::binary)) throw IoError("cannot open " + path.string());
+  if (extension == ".vtu") return read_with<vtkXMLUnstructuredGridReader>(path, "a VTK XML unstructured grid (VTKFile type=\"UnstructuredGrid\")");
+  if (extension == ".vti") return read_with<vtkXMLImageDataReader>(path, "a VTK XML image (VTKFile type=\"ImageData\")");
+  if (extension == ".nii") return read_with<vtkNIFTIImageReader>(path, "a NIfTI-1 image");
+  return read_with<vtkDataSetReader>(path, "a legacy VTK dataset");
+}
+
+}  // namespace volspline::detail

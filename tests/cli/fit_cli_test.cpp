@@ -1,0 +1,95 @@
+// `volspline fit`: volume data in, a simplex spline volume out that `eval`, `xray`, `view` and
+// `convert` open; the statistics file has the paper's Table 1 columns; bad input exits with 2,
+// naming the file, with nothing written.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/cli_runner.h"
+#include "support/temporary_directory.h"
+#include "volspline/io/model_file.h"
+#include "volspline/simplex/dms_spline_evaluator.h"
+
+namespace volspline {
+namespace {
+
+class FitCli : public ::testing::Test {
+ protected:
+  test_support::TemporaryDirectory tmp;
+  std::string path(const std::string& name) const { return (tmp.path() / name).string(); }
+  test_support::CliResult run(const std::string& args) const { return test_support::run_cli(args, tmp.path()); }
+
+  void SetUp() override {
+    // A linear field (reproduced exactly by any degree) and a second attribute, on a grid.
+    std::ofstream csv(path("data.csv"));
+    csv.precision(17);
+    csv << "temperature,x,y,z,other\n";
+    for (int k = 0; k < 8; ++k)
+      for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) {
+          const double x = i / 7.0, y = j / 7.0, z = k / 7.0;
+          csv << 1 + 2 * x - y + 0.5 * z << "," << x << "," << y << "," << z << "," << x * y << "\n";
+        }
+  }
+};
+
+TEST_F(FitCli, FitsAndTheResultOpensInEvalXrayViewAndConvert) {
+  auto r = run("fit " + path("data.csv") + " -o " + path("f.json") + " --degree 2 --attributes temperature --primary-knots 40 --stats " +
+               path("s.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("temperature"), std::string::npos) << r.out;
+  const Model m = read_model(path("f.json"));
+  const auto& v = std::get<DmsSplineVolume>(m.objects.at(0).spline);
+  EXPECT_EQ(v.attribute_names(), std::vector<std::string>{"temperature"});
+  std::ifstream stats_file(path("s.json"));
+  const auto stats = nlohmann::json::parse(stats_file);
+  for (const char* key : {"data_points", "domain_tetrahedra", "control_points", "knots", "geometric_error", "field_errors", "seconds"})
+    EXPECT_TRUE(stats.contains(key)) << key;
+  EXPECT_EQ(stats["data_points"].get<int>(), 512);
+  EXPECT_EQ(stats["control_points"].get<int>(), v.control_vector_count());
+  EXPECT_EQ(stats["domain_tetrahedra"].get<std::size_t>(), v.domain().tetrahedra.size());
+  EXPECT_LE(stats["field_errors"][0]["max_abs"].get<double>(), 1e-10);  // a linear field
+  EXPECT_EQ(stats["field_errors"][0]["data_min"].get<double>(), 0.0);  // 1 + 2·0 − 1 + 0
+  EXPECT_EQ(stats["outside_points"].get<int>(), 0);  // the grid's hull is the cube, all in Ω
+
+  r = run("eval " + path("f.json") + " --at 0.3,0.4,0.5 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["points"][0][3].get<double>(), 1 + 0.6 - 0.4 + 0.25, 1e-10);
+  r = run("convert " + path("f.json") + " -o " + path("f.vtu"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("xray " + path("f.json") + " -o " + path("x.png") + " --size 32,24");
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("view " + path("f.json") + " -o " + path("v.png") + " --iso-attribute temperature:1.5 --size 48,36");
+  ASSERT_EQ(r.code, 0) << r.err;
+
+  // A generated data set.
+  r = run("fit marschner-lobb:6 -o " + path("ml.json") + " --degree 1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("rho"), std::string::npos) << r.out;
+}
+
+TEST_F(FitCli, BadInputExitsWithTwoNamingTheProblem) {
+  std::ofstream(path("nan.csv")) << "x,y,z,d\n0,0,0,1\n1,0,0,nan\n";
+  std::ofstream(path("noz.csv")) << "x,y,d\n0,0,1\n";
+  const auto expect_bad = [&](const std::string& args, const std::string& named) {
+    std::filesystem::remove(path("o.json"));
+    const auto r = run(args + " -o " + path("o.json"));
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(named), std::string::npos) << args << "\n" << r.err;
+    EXPECT_FALSE(std::filesystem::exists(path("o.json"))) << args;
+  };
+  expect_bad("fit " + path("nan.csv"), "nan.csv: line 3: column 'd'");
+  expect_bad("fit " + path("noz.csv"), "no column z");
+  expect_bad("fit " + path("absent.csv"), "absent.csv");
+  expect_bad("fit " + path("data.csv") + " --attributes pressure", "--attributes");
+  expect_bad("fit " + path("data.csv") + " --degree 9", "--degree");
+  expect_bad("fit " + path("data.csv") + " --degree 3 --primary-knots 200", "too few");
+  expect_bad("fit marschner-lobb:x", "marschner-lobb:N");
+}
+
+}  // namespace
+}  // namespace volspline

@@ -1,0 +1,145 @@
+#include "volspline/mesh/point_cloud_domain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "volspline/core/error.h"
+
+namespace volspline {
+namespace {
+
+std::vector<Eigen::Vector3d> grid(int n, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const std::function<bool(const Eigen::Vector3d&)>& keep) {
+  std::vector<Eigen::Vector3d> points;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Eigen::Vector3d t(i, j, k);
+        const Eigen::Vector3d x = lo + (hi - lo).cwiseProduct(t / (n - 1));
+        if (keep(x)) points.push_back(x);
+      }
+  return points;
+}
+
+double min_distance(const Eigen::Vector3d& x, const std::vector<Eigen::Vector3d>& points, const std::vector<int>& chosen) {
+  double d = INFINITY;
+  for (int c : chosen) d = std::min(d, (x - points[static_cast<std::size_t>(c)]).norm());
+  return d;
+}
+
+TEST(PointCloudDomain, FarthestPointSamplesAreGreedyCoveringChoices) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Eigen::Vector3d> points(400);
+  for (auto& p : points) p = Eigen::Vector3d(u(random), u(random), u(random));
+  points.push_back(points[17]);  // a duplicate is never chosen twice
+  const std::vector<int> chosen = farthest_point_subsample(points, 40);
+  ASSERT_EQ(chosen.size(), 40u);
+  // Each choice is the point farthest from those before it (brute force), so the distances at
+  // which points are chosen do not increase, and the last bounds the covering radius.
+  double previous = INFINITY;
+  for (std::size_t k = 1; k < chosen.size(); ++k) {
+    const std::vector<int> before(chosen.begin(), chosen.begin() + static_cast<std::ptrdiff_t>(k));
+    double farthest = 0;
+    for (const auto& p : points) farthest = std::max(farthest, min_distance(p, points, before));
+    const double d = min_distance(points[static_cast<std::size_t>(chosen[k])], points, before);
+    EXPECT_EQ(d, farthest);
+    EXPECT_LE(d, previous);
+    previous = d;
+  }
+  double covering = 0;
+  for (const auto& p : points) covering = std::max(covering, min_distance(p, points, chosen));
+  EXPECT_LE(covering, previous);
+  EXPECT_EQ(farthest_point_subsample(points, 40), chosen);  // deterministic
+  EXPECT_EQ(farthest_point_subsample(std::vector<Eigen::Vector3d>(5, Eigen::Vector3d::Ones()), 3).size(), 1u);
+}
+
+TEST(PointCloudDomain, OccupancyBallsHaveTheEighthNearestNeighbourRadius) {
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Vector3d> points(300);
+  for (auto& p : points) p = Eigen::Vector3d(u(random), u(random), 0.2 * u(random));
+  const OccupancyMap map(points);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    std::vector<double> distances;
+    for (std::size_t j = 0; j < points.size(); ++j)
+      if (j != i) distances.push_back((points[i] - points[j]).norm());
+    std::sort(distances.begin(), distances.end());
+    EXPECT_EQ(map.radius(i), distances[kOccupancyNeighbour - 1]);
+  }
+  for (int s = 0; s < 2000; ++s) {
+    const Eigen::Vector3d x(1.2 * u(random), 1.2 * u(random), 0.5 * u(random));
+    bool inside = false;
+    for (std::size_t j = 0; j < points.size(); ++j) inside = inside || (x - points[j]).norm() <= map.radius(j);
+    EXPECT_EQ(map.contains(x), inside) << x.transpose();
+  }
+}
+
+TEST(PointCloudDomain, CubeOfPointsGivesTheCubeWithItsCornersEdgesAndFaces) {
+  const auto points = grid(9, Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), [](const Eigen::Vector3d&) { return true; });
+  PointCloudDomainOptions options;
+  options.primary_knots = 120;
+  const PointCloudDomain domain = point_cloud_domain(points, options);
+  EXPECT_NEAR(tetrahedral_mesh_volume(domain.mesh), 1.0, 1e-12);
+  EXPECT_EQ(domain.mesh.tetrahedra.size(), domain.delaunay_tetrahedra);  // nothing of a full cube is clipped
+  ASSERT_EQ(domain.data_index.size(), domain.mesh.points.size());
+  // The solid angle is 4π inside, 2π on a face, π on an edge, π/2 at a corner.
+  const std::vector<double> angles = vertex_solid_angles(domain.mesh);
+  int corners = 0;
+  for (std::size_t v = 0; v < domain.mesh.points.size(); ++v) {
+    const Eigen::Vector3d& x = domain.mesh.points[v];
+    // The jitter moves interior knots by 1 % of an edge; the hull's stay where the data are.
+    const Eigen::Vector3d& data_point = points[static_cast<std::size_t>(domain.data_index[v])];
+    if (domain.kinds[v] == VertexKind::Interior) EXPECT_LE((x - data_point).norm(), 0.01 * std::sqrt(3.0));
+    else EXPECT_EQ(x, data_point);
+    int on = 0;
+    for (int a = 0; a < 3; ++a) on += x[a] == 0 || x[a] == 1;
+    const double expected[] = {4 * std::numbers::pi, 2 * std::numbers::pi, std::numbers::pi, std::numbers::pi / 2};
+    const VertexKind kinds[] = {VertexKind::Interior, VertexKind::General, VertexKind::Curve, VertexKind::Corner};
+    EXPECT_NEAR(angles[v], expected[on], 1e-12) << x.transpose();
+    EXPECT_EQ(domain.kinds[v], kinds[on]) << x.transpose();
+    corners += on == 3;
+  }
+  EXPECT_EQ(corners, 8);
+}
+
+TEST(PointCloudDomain, LShapedPointsDoNotFillTheConcavity) {
+  // [0,2]³ without the quadrant x > 1, y > 1: volume 6; the hull's is 7.
+  const auto points = grid(17, Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 2, 2),
+                           [](const Eigen::Vector3d& x) { return x.x() <= 1 || x.y() <= 1; });
+  PointCloudDomainOptions options;
+  options.primary_knots = 300;
+  const PointCloudDomain domain = point_cloud_domain(points, options);
+  PointCloudDomainOptions unclipped = options;
+  unclipped.clip_to_occupancy = false;
+  EXPECT_NEAR(tetrahedral_mesh_volume(point_cloud_domain(points, unclipped).mesh), 7.0, 1e-12);
+  const double volume = tetrahedral_mesh_volume(domain.mesh);
+  EXPECT_LT(volume, 6.25);
+  EXPECT_GT(volume, 5.9);
+  // No tetrahedron reaches deeper into the concavity than two data spacings (1/4).
+  for (const auto& t : domain.mesh.tetrahedra) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int v : t) c += domain.mesh.points[static_cast<std::size_t>(v)] / 4;
+    EXPECT_FALSE(c.x() > 1.25 && c.y() > 1.25) << c.transpose();
+  }
+}
+
+TEST(PointCloudDomain, CoplanarOrTooFewPointsAreRefused) {
+  std::vector<Eigen::Vector3d> flat;
+  for (int i = 0; i < 10; ++i) flat.emplace_back(i, i * i, 0);
+  EXPECT_THROW(point_cloud_domain(flat), InvalidInput);
+  EXPECT_THROW(point_cloud_domain(std::vector<Eigen::Vector3d>(3, Eigen::Vector3d::Zero())), InvalidInput);
+  std::vector<Eigen::Vector3d> bad = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, NAN}};
+  try {
+    point_cloud_domain(bad);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.where(), "points[3]");
+  }
+}
+
+}  // namespace
+}  // namespace volspline

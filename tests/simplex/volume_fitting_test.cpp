@@ -1,0 +1,143 @@
+#include "volspline/simplex/volume_fitting.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "volspline/construct/volume_data_examples.h"
+#include "volspline/core/error.h"
+#include "volspline/simplex/dms_spline_evaluator.h"
+
+namespace volspline {
+namespace {
+
+std::vector<Eigen::Vector3d> random_points(std::size_t n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Vector3d> points(n);
+  for (auto& p : points) p = Eigen::Vector3d(u(random), 0.8 * u(random), 0.6 * u(random));
+  return points;
+}
+
+// A polynomial of total degree n with every monomial present.
+double polynomial(const Eigen::Vector3d& x, int n) {
+  double value = 0.5;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; i + j <= n; ++j)
+      for (int k = 0; i + j + k <= n; ++k)
+        value += (1 + i - 0.5 * j + 0.25 * k) / (1 + i + j + k) * std::pow(x.x(), i) * std::pow(x.y(), j) * std::pow(x.z(), k);
+  return value;
+}
+
+TEST(VolumeFitting, SamplesOfPolynomialsOfDegreeAtMostNAreReproduced) {
+  for (int n = 1; n <= 3; ++n) {
+    for (int m = 0; m <= n; m += n) {  // degree 0 (a constant) and degree n
+      const std::vector<Eigen::Vector3d> points = random_points(3000, 11);
+      VolumeData data = sampled_volume_data(points, "f", [&](const Eigen::Vector3d& x) { return m == 0 ? 2.5 : polynomial(x, m); });
+      VolumeFitOptions options;
+      options.degree = n;
+      options.domain.primary_knots = 24;
+      const VolumeFit fit = fit_volume_data(data, options);
+      const VolumeFitErrors& e = fit.statistics.errors;
+      EXPECT_EQ(e.fitted_points + e.outside_points, data.size());
+      EXPECT_GT(e.fitted_points, data.size() / 2) << "degree " << n;
+      EXPECT_LE(std::sqrt(e.geometric_max), 1e-10) << "degree " << n;
+      ASSERT_EQ(e.attributes.size(), 1u);
+      EXPECT_LE(e.attributes[0].max_abs, 1e-10) << "degree " << n << ", polynomial of degree " << m;
+      // Everywhere in Ω, not only at the data: the spline is the polynomial.
+      DmsSplineEvaluator evaluator(fit.volume);
+      const int column = fit.volume.attribute_column("f");
+      int inside = 0;
+      for (const auto& x : random_points(300, 99)) {
+        const DmsSplinePoint p = evaluator.evaluate(x);
+        if (!p.inside) continue;
+        ++inside;
+        EXPECT_NEAR(p.value[column], m == 0 ? 2.5 : polynomial(x, m), 1e-10) << "degree " << n << " at " << x.transpose();
+        EXPECT_LE((p.value.head<3>() - x).norm(), 1e-10);
+      }
+      EXPECT_GT(inside, 200);
+      EXPECT_EQ(fit.statistics.knots, fit.statistics.primary_knots * static_cast<std::size_t>(n + 1));
+      EXPECT_EQ(fit.statistics.control_points, static_cast<std::size_t>(fit.volume.control_vector_count()));
+    }
+  }
+}
+
+TEST(VolumeFitting, TheIterativeSolverReproducesPolynomialsToo) {
+  // Conjugate gradients (used above 8,000 control vectors) forced on a small problem.
+  VolumeData data = sampled_volume_data(random_points(3000, 12), "f", [](const Eigen::Vector3d& x) { return polynomial(x, 2); });
+  VolumeFitOptions options;
+  options.degree = 2;
+  options.domain.primary_knots = 30;
+  options.fit.direct_limit = 0;
+  const VolumeFit fit = fit_volume_data(data, options);
+  EXPECT_LE(fit.statistics.errors.attributes[0].max_abs, 1e-10);
+  EXPECT_LE(std::sqrt(fit.statistics.errors.geometric_max), 1e-10);
+}
+
+TEST(VolumeFitting, ErrorsAreReportedRawAndNormalisedByTheDataRange) {
+  // A degree-1 fit of a quadratic: the normalised errors are the raw ones over the range.
+  VolumeData data = sampled_volume_data(random_points(2000, 3), "q", [](const Eigen::Vector3d& x) { return 10 * x.squaredNorm(); });
+  VolumeFitOptions options;
+  options.degree = 1;
+  options.domain.primary_knots = 20;
+  const VolumeFit fit = fit_volume_data(data, options);
+  const AttributeFitError& q = fit.statistics.errors.attributes[0];
+  ASSERT_GT(q.mean_square, 0);
+  const double range = q.data_max - q.data_min;
+  EXPECT_NEAR(q.normalised_mean_square, q.mean_square / (range * range), 1e-15 * q.mean_square);
+  EXPECT_NEAR(q.normalised_max_abs, q.max_abs / range, 1e-15);
+  // The same errors again from the fitted volume, and their definition at the data.
+  const VolumeFitErrors again = volume_fit_errors(fit.volume, data);
+  EXPECT_NEAR(again.attributes[0].mean_square, q.mean_square, 1e-12 * q.mean_square);
+  DmsSplineEvaluator evaluator(fit.volume);
+  double squares = 0, largest = 0;
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const DmsSplinePoint p = evaluator.evaluate(data.points[i]);
+    if (!p.inside) continue;
+    ++inside;
+    const double error = p.value[3] - data.attributes(static_cast<Eigen::Index>(i), 0);
+    squares += error * error;
+    largest = std::max(largest, std::abs(error));
+  }
+  EXPECT_EQ(inside, fit.statistics.errors.fitted_points);
+  EXPECT_NEAR(squares / static_cast<double>(inside), q.mean_square, 1e-9 * q.mean_square);
+  EXPECT_NEAR(largest, q.max_abs, 1e-9 * q.max_abs);
+}
+
+TEST(VolumeFitting, BadDataIsRefusedClearly) {
+  VolumeData data = sampled_volume_data(random_points(500, 5), "f", [](const Eigen::Vector3d& x) { return x.x(); });
+  data.attributes(7, 0) = NAN;
+  try {
+    fit_volume_data(data);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("point 7: attribute 'f' is not a finite number"), std::string::npos) << e.what();
+  }
+  // Too few points for the degree: fewer data points than control vectors.
+  VolumeData few = sampled_volume_data(random_points(60, 6), "f", [](const Eigen::Vector3d& x) { return x.x(); });
+  VolumeFitOptions cubic;
+  cubic.degree = 3;
+  cubic.domain.primary_knots = 30;
+  try {
+    fit_volume_data(few, cubic);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("too few to determine"), std::string::npos) << e.what();
+  }
+  std::vector<Eigen::Vector3d> flat = random_points(200, 7);
+  for (auto& p : flat) p.z() = 0.5 * p.x() - p.y();
+  try {
+    fit_volume_data(sampled_volume_data(flat, "f", [](const Eigen::Vector3d&) { return 1.0; }));
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("coplanar"), std::string::npos) << e.what();
+  }
+  VolumeFitOptions zero;
+  zero.degree = 0;
+  EXPECT_THROW(fit_volume_data(few, zero), InvalidInput);
+}
+
+}  // namespace
+}  // namespace volspline
