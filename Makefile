@@ -46,7 +46,7 @@ FUZZ_SECONDS ?= 25
 EXCHANGE_FUZZ_SECONDS ?= 12
 fuzz: deps
 	@CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" -DVOLSPLINE_BUILD_FUZZ=ON -DVOLSPLINE_BUILD_TESTS=OFF -DVOLSPLINE_BUILD_BENCH=OFF $(UNITY_FLAGS) >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz gismo_xml_fuzz irit_itd_fuzz vtu_reader_fuzz skeleton_reader_fuzz
+	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz gismo_xml_fuzz irit_itd_fuzz vtu_reader_fuzz skeleton_reader_fuzz volume_data_fuzz
 	mkdir -p build-fuzz/corpus build-fuzz/corpus-mesh && cp examples/*.json build-fuzz/corpus/ 2>/dev/null || true
 	build-fuzz/bin/model_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 build-fuzz/corpus fuzz/corpus
 	build-fuzz/bin/mesh_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-mesh fuzz/corpus-mesh
@@ -57,6 +57,8 @@ fuzz: deps
 	build-fuzz/bin/vtu_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-vtu fuzz/corpus-vtu
 	mkdir -p build-fuzz/corpus-skeleton && cp examples/skeletons/*.json build-fuzz/corpus-skeleton/
 	build-fuzz/bin/skeleton_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-skeleton fuzz/corpus-skeleton
+	mkdir -p build-fuzz/corpus-volume
+	build-fuzz/bin/volume_data_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-volume fuzz/corpus-volume
 
 clean:
 	rm -rf $(BUILD_DIR) build-asan build-fuzz out

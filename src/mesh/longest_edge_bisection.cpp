@@ -16,7 +16,7 @@ namespace {
 
 constexpr std::array<std::array<int, 2>, 6> kTetrahedronEdges{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
 
-std::uint64_t edge_key(int a, int b) {
+std::uint64_t undirected_edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
@@ -57,7 +57,7 @@ LongestEdgeBisection bisect_longest_edges(const TetrahedralMesh& mesh, const Lon
   const auto attach = [&](int t) {
     const auto& v = tetrahedra[static_cast<std::size_t>(t)];
     for (const auto& e : kTetrahedronEdges) {
-      auto& list = edge_tetrahedra[edge_key(v[e[0]], v[e[1]])];
+      auto& list = edge_tetrahedra[undirected_edge_key(v[e[0]], v[e[1]])];
       if (list.empty()) {
         const double l = length(v[e[0]], v[e[1]]);
         if (l > options.target_edge) pending.push({l, std::min(v[e[0]], v[e[1]]), std::max(v[e[0]], v[e[1]])});
@@ -68,7 +68,7 @@ LongestEdgeBisection bisect_longest_edges(const TetrahedralMesh& mesh, const Lon
   const auto detach = [&](int t) {
     const auto& v = tetrahedra[static_cast<std::size_t>(t)];
     for (const auto& e : kTetrahedronEdges) {
-      const auto it = edge_tetrahedra.find(edge_key(v[e[0]], v[e[1]]));
+      const auto it = edge_tetrahedra.find(undirected_edge_key(v[e[0]], v[e[1]]));
       auto& list = it->second;
       list.erase(std::find(list.begin(), list.end(), t));
       if (list.empty()) edge_tetrahedra.erase(it);
@@ -79,7 +79,7 @@ LongestEdgeBisection bisect_longest_edges(const TetrahedralMesh& mesh, const Lon
   while (!pending.empty()) {
     const PendingEdge edge = pending.top();
     pending.pop();
-    const auto found = edge_tetrahedra.find(edge_key(edge.a, edge.b));
+    const auto found = edge_tetrahedra.find(undirected_edge_key(edge.a, edge.b));
     if (found == edge_tetrahedra.end()) continue;  // already split
     const std::vector<int> around = found->second;
     if (tetrahedra.size() + around.size() > options.max_tetrahedra)
