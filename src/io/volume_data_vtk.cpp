@@ -21,26 +21,11 @@
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include "../mesh/vtk_reader_errors.h"
 #include "volspline/core/error.h"
 
 namespace volspline::detail {
 namespace {
-
-struct VtkErrors {
-  std::string first;
-  static void collect(vtkObject*, unsigned long event, void* client, void* call) {
-    auto* self = static_cast<VtkErrors*>(client);
-    if (event == vtkCommand::ErrorEvent && self->first.empty() && call) self->first = static_cast<const char*>(call);
-  }
-};
-
-std::string trimmed(std::string message) {
-  // VTK messages start with "ERROR: In FILE, line N\nvtkClass (0x...): " — keep what follows.
-  const auto colon = message.find("): ");
-  if (colon != std::string::npos) message = message.substr(colon + 3);
-  while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
-  return message;
-}
 
 VolumeData from_dataset(vtkDataSet* set, const std::string& source, const vtkMatrix4x4* to_world) {
   VolumeData data;
@@ -106,7 +91,7 @@ VolumeData read_with(const std::filesystem::path& path, const char* expected) {
     reader->ReadAllTensorsOff();
   }
   reader->Update();
-  if (!errors.first.empty()) throw InvalidInput(trimmed(errors.first), source);
+  if (!errors.first.empty()) throw InvalidInput(vtk_message_text(errors.first), source);
   vtkDataSet* set = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
   if (!set) throw InvalidInput(std::string("the VTK reader produced no dataset (expected ") + expected + ")", source);
   const vtkMatrix4x4* to_world = nullptr;

@@ -24,6 +24,7 @@
 #include <vtkUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include "vtk_reader_errors.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 
@@ -351,22 +352,8 @@ TetrahedralMesh read_tetgen(const std::filesystem::path& path) {
 // VTK unstructured grids through the VTK library. Its errors arrive as ErrorEvents, which an
 // observer collects instead of letting VTK print them.
 
-// Warnings are observed too, only so that VTK does not print them; they are not errors.
-struct VtkErrors {
-  std::string first;
-  static void collect(vtkObject*, unsigned long event, void* client, void* call) {
-    auto* self = static_cast<VtkErrors*>(client);
-    if (event == vtkCommand::ErrorEvent && self->first.empty() && call) self->first = static_cast<const char*>(call);
-  }
-};
-
-std::string trimmed(std::string message) {
-  // VTK messages start with "ERROR: In FILE, line N\nvtkClass (0x...): " — keep what follows.
-  const auto colon = message.find("): ");
-  if (colon != std::string::npos) message = message.substr(colon + 3);
-  while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
-  return message;
-}
+using detail::VtkErrors;
+using detail::vtk_message_text;
 
 std::string cell_type_name(int type) {
   switch (type) {
@@ -471,12 +458,12 @@ TetrahedralMesh read_vtk(const std::filesystem::path& path) {
   if constexpr (std::is_same_v<Reader, vtkUnstructuredGridReader>) {
     reader->ReadAllScalarsOff();
     if (!reader->IsFileUnstructuredGrid()) {
-      throw InvalidInput(errors.first.empty() ? "not a legacy VTK file with DATASET UNSTRUCTURED_GRID" : trimmed(errors.first),
+      throw InvalidInput(errors.first.empty() ? "not a legacy VTK file with DATASET UNSTRUCTURED_GRID" : vtk_message_text(errors.first),
                          source);
     }
   }
   reader->Update();
-  if (!errors.first.empty()) throw InvalidInput(trimmed(errors.first), source);
+  if (!errors.first.empty()) throw InvalidInput(vtk_message_text(errors.first), source);
   vtkUnstructuredGrid* grid = reader->GetOutput();
   if (!grid) throw InvalidInput("the VTK reader produced no grid", source);
   return from_unstructured_grid(grid, source);
