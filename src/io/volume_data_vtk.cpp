@@ -70,17 +70,8 @@ template <class Reader>
 VolumeData read_with(const std::filesystem::path& path, const char* expected) {
   const std::string source = path.string();
   VtkErrors errors;
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetCallback(&VtkErrors::collect);
-  observer->SetClientData(&errors);
   vtkNew<Reader> reader;
-  reader->AddObserver(vtkCommand::ErrorEvent, observer);
-  reader->AddObserver(vtkCommand::WarningEvent, observer);
-  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
-  if constexpr (std::is_same_v<Reader, vtkXMLUnstructuredGridReader> || std::is_same_v<Reader, vtkXMLImageDataReader>) {
-    reader->SetReaderErrorObserver(observer);
-    reader->SetParserErrorObserver(observer);
-  }
+  errors.watch(*reader);
   if constexpr (!std::is_same_v<Reader, vtkDataSetReader>) {
     if (!reader->CanReadFile(source.c_str())) throw InvalidInput(std::string("not ") + expected, source);
   }

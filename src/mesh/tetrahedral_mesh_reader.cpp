@@ -439,17 +439,9 @@ TetrahedralMesh read_vtk(const std::filesystem::path& path) {
   const std::string source = path.string();
   require_readable(path);
   VtkErrors errors;
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetCallback(&VtkErrors::collect);
-  observer->SetClientData(&errors);
   vtkNew<Reader> reader;
-  reader->AddObserver(vtkCommand::ErrorEvent, observer);
-  reader->AddObserver(vtkCommand::WarningEvent, observer);
-  // The pipeline reports the reader's failure once more, from its executive.
-  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  errors.watch(*reader);
   if constexpr (std::is_same_v<Reader, vtkXMLUnstructuredGridReader>) {
-    reader->SetReaderErrorObserver(observer);
-    reader->SetParserErrorObserver(observer);
     if (!reader->CanReadFile(source.c_str())) {
       throw InvalidInput("not a VTK XML unstructured grid (VTKFile type=\"UnstructuredGrid\")", source);
     }

@@ -5,9 +5,14 @@
 // VTK does not print them.
 #include <cctype>
 #include <string>
+#include <type_traits>
 
+#include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
+#include <vtkExecutive.h>
+#include <vtkNew.h>
 #include <vtkObject.h>
+#include <vtkXMLReader.h>
 
 namespace volspline::detail {
 
@@ -17,6 +22,25 @@ struct VtkErrors {
     auto* self = static_cast<VtkErrors*>(client);
     if (event == vtkCommand::ErrorEvent && self->first.empty() && call) self->first = static_cast<const char*>(call);
   }
+  VtkErrors() {
+    observer->SetCallback(&VtkErrors::collect);
+    observer->SetClientData(this);
+  }
+  VtkErrors(const VtkErrors&) = delete;
+  VtkErrors& operator=(const VtkErrors&) = delete;
+  /// Observes the reader's errors and warnings, its pipeline's (which reports the reader's failure
+  /// once more, from its executive) and, for XML readers, those of the reader and the parser.
+  template <class Reader>
+  void watch(Reader& reader) {
+    reader.AddObserver(vtkCommand::ErrorEvent, observer);
+    reader.AddObserver(vtkCommand::WarningEvent, observer);
+    reader.GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+    if constexpr (std::is_base_of_v<vtkXMLReader, Reader>) {
+      reader.SetReaderErrorObserver(observer);
+      reader.SetParserErrorObserver(observer);
+    }
+  }
+  vtkNew<vtkCallbackCommand> observer;
 };
 
 /// A VTK message without its "ERROR: In FILE, line N\nvtkClass (0x...): " prefix.
