@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "progress_bar.h"
 #include "volspline/core/error.h"
+#include "volspline/core/version.h"
 
 namespace {
 
@@ -22,7 +23,7 @@ int fail(int code, const std::string& message) {
 int main(int argc, char** argv) {
   CLI::App app{"volspline: free-form trivariate spline solids", "volspline"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "volspline 0.1.0");
+  app.set_version_flag("--version", std::string("volspline ") + volspline::kVersion);
   // Options a subcommand does not know fall through to this app, so the global flags below are
   // accepted before and after the subcommand: `volspline -v boundary ...`, `volspline boundary ... -v`.
   // (Inherited by the subcommands added after this line.)
