@@ -142,6 +142,7 @@ VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& d
   solver.refinement_steps = options.refinement_steps;
   solver.direct_limit = options.direct_limit;
   solver.iterative_tolerance = options.iterative_tolerance;
+  solver.inner_tolerance = options.inner_tolerance;
   FittingSolverReport report;
   const Eigen::MatrixXd solution = solve_fitting_least_squares(c.a, targets, prior, solver, &report);
   control.leftCols<3>() = solution.leftCols<3>();

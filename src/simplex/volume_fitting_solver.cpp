@@ -144,11 +144,19 @@ Eigen::MatrixXd solve_fitting_least_squares(const Eigen::SparseMatrix<double, Ei
   };
   Eigen::MatrixXd solution = prior;
   inner(rhs, solution);
+  double previous = INFINITY;
   for (int step = 0; step < options.refinement_steps; ++step) {
     const Eigen::MatrixXd gradient = columns.transpose() * (targets - a * solution);
     bool converged = true;
-    for (Eigen::Index c = 0; c < gradient.cols(); ++c) converged = converged && gradient.col(c).norm() <= options.iterative_tolerance * scale[c];
-    if (converged) break;
+    double worst = 0;
+    for (Eigen::Index c = 0; c < gradient.cols(); ++c) {
+      converged = converged && gradient.col(c).norm() <= options.iterative_tolerance * scale[c];
+      worst = std::max(worst, gradient.col(c).norm() / scale[c]);
+    }
+    // Stagnation: what is left is the regularisation's bias along directions the data barely
+    // see (it shrinks by λ / (λ + σ) per step, σ tiny), not worth a full solve per step.
+    if (converged || worst > 0.5 * previous) break;
+    previous = worst;
     Eigen::MatrixXd update = Eigen::MatrixXd::Zero(gradient.rows(), gradient.cols());
     inner(gradient, update);
     solution += update;

@@ -61,6 +61,9 @@ struct ControlVectorFitOptions {
   /// it they are solved by conjugate gradients with an incomplete Cholesky preconditioner.
   long direct_limit = 8000;
   double iterative_tolerance = 1e-13;
+  /// Each conjugate-gradient solve runs to this fraction of its right-hand side; the iterated
+  /// Tikhonov steps refine it (src/simplex/volume_fitting_solver.h).
+  double inner_tolerance = 1e-6;
   /// The prior of the attribute columns (and the conjugate gradients' start) is the volume's
   /// current values there instead of the data mean: for refits after a refinement or a knot
   /// move, where the old fit is a good guess.
