@@ -3,7 +3,8 @@
 // the domain from the data (mesh/point_cloud_domain.h), generated knot clouds, and the control
 // vectors — geometry and every attribute together — by least squares at the data points, whose
 // positions are their own parameters:  min Σ_i |p_i − s(x_i, y_i, z_i)|².
-// Knot optimisation (§5.3) and adaptive refinement (§5.4) are not done yet (docs/fitting.md).
+// Knot optimisation (§5.3, simplex/knot_optimisation.h) and adaptive refinement (§5.4,
+// simplex/adaptive_refinement.h) follow in fit_volume_data when asked for (docs/fitting.md).
 #include <functional>
 #include <string>
 #include <vector>
