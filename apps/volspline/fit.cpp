@@ -1,7 +1,8 @@
-// volspline fit DATA -o MODEL.json --degree N [--attributes a,b] [--primary-knots K] [--stats S.json]
-// Fits scattered volume data with a trivariate DMS simplex spline (Hua–He–Qin §5.1–5.2, eq. 10;
+// volspline fit DATA -o MODEL.json --degree N [--attributes a,b] [--primary-knots K] [--error E]
+//   [--max-tetrahedra M] [--seconds T] [--stats S.json] [--png P.png]
+// Fits scattered volume data with a trivariate DMS simplex spline (Hua–He–Qin §5, eq. 10;
 // simplex/volume_fitting.h): domain from the data, generated knot clouds, geometry and
-// attributes by least squares. DATA is a file (io/volume_data.h) or a generated data set:
+// attributes by least squares, then adaptive refinement (§5.4) down to the error bound E. DATA is a file (io/volume_data.h) or a generated data set:
 // marschner-lobb:N (N³ samples on [−1, 1]³) or two-material:N.
 #include <fstream>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.h"
+#include "progress_bar.h"
 #include "commands.h"
 #include "volspline/construct/volume_data_examples.h"
 #include "volspline/core/error.h"
@@ -18,15 +20,22 @@
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 #include "volspline/io/volume_data.h"
+#include "volspline/render/image.h"
+#include "volspline/render/xray_image.h"
+#include "volspline/simplex/adaptive_refinement.h"
 #include "volspline/simplex/volume_fitting.h"
 
 namespace volspline::cli {
 namespace {
 
 struct FitRequest {
-  std::string data, out, attributes, stats;
+  std::string data, out, attributes, stats, png;
   int degree = 2;
   int primary_knots = 0;
+  double error = 0;
+  long long max_tetrahedra = 0;
+  double seconds = 0;
+  std::string knots = "fixed";
 };
 
 VolumeData data_of(const std::string& name) {
@@ -58,7 +67,7 @@ std::vector<std::string> split_names(const std::string& list) {
   return names;
 }
 
-nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& data, int degree) {
+nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& data, int degree, double error_bound) {
   nlohmann::json j;
   const VolumeFitErrors& e = s.errors;
   j["data"] = data;
@@ -93,8 +102,32 @@ nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& 
   for (const auto& p : s.phases) phases[p.name] = p.seconds, total += p.seconds;
   j["seconds"] = phases;
   j["seconds_total"] = total;
-  j["knot_optimisation"] = "not yet (Hua-He-Qin 5.3)";
-  j["adaptive_refinement"] = "not yet (Hua-He-Qin 5.4)";
+  j["solver"] = {{"method", e.solver.direct ? "SimplicialLDLT" : "conjugate gradients (incomplete Cholesky)"},
+                 {"tikhonov_steps", e.solver.tikhonov_steps},
+                 {"iterations", e.solver.iterations}};
+  const KnotOptimisationReport& k = s.knot_optimisation;
+  j["knot_optimisation"] = {{"sweeps", k.sweeps},
+                            {"vertices_above_threshold", k.vertices_tried},
+                            {"vertices_moved", k.vertices_moved},
+                            {"sweeps_undone", k.undone_sweeps},
+                            {"field_normalised_mean_square_before", k.before},
+                            {"field_normalised_mean_square_after", k.after}};
+  const AdaptiveRefinementReport& r = s.refinement;
+  nlohmann::json rounds = nlohmann::json::array();
+  for (const auto& round : r.rounds)
+    rounds.push_back({{"tetrahedra", round.tetrahedra},
+                      {"control_points", round.control_points},
+                      {"above_bound", round.above},
+                      {"split", round.split},
+                      {"field_normalised_mean_square", round.field_mean_square},
+                      {"largest_tetrahedron_rms", round.largest_tetrahedron_error},
+                      {"seconds", round.seconds},
+                      {"undone", round.undone}});
+  j["adaptive_refinement"] = {{"error_bound", error_bound},
+                              {"error_measure", "per tetrahedron: RMS over its data points and the attributes of the normalised field error"},
+                              {"state", refinement_stop_text(r.stop)},
+                              {"tetrahedra_above_bound", r.above},
+                              {"rounds", rounds}};
   return j;
 }
 
@@ -110,19 +143,41 @@ void fit_file(const FitRequest& r) {
   options.degree = r.degree;
   options.domain.primary_knots = r.primary_knots;
   if (r.primary_knots < 0) throw InvalidInput("expected a positive number of primary knots, got " + std::to_string(r.primary_knots), "--primary-knots");
+  if (!(r.error >= 0)) throw InvalidInput("expected an error bound >= 0, got " + format_double(r.error), "--error");
+  if (r.max_tetrahedra < 0) throw InvalidInput("expected a tetrahedron budget >= 0, got " + std::to_string(r.max_tetrahedra), "--max-tetrahedra");
+  if (!(r.seconds >= 0)) throw InvalidInput("expected a time budget >= 0 seconds, got " + format_double(r.seconds), "--seconds");
+  if (r.knots != "fixed" && r.knots != "optimise")
+    throw InvalidInput("expected --knots fixed or optimise, got '" + r.knots + "'", "--knots");
+  options.knots.enabled = r.knots == "optimise";
+  options.refinement.error = r.error;
+  options.refinement.max_tetrahedra = static_cast<std::size_t>(r.max_tetrahedra);
+  options.refinement.seconds = r.seconds;
+  Progress* progress = command_progress();
   VolumeFit fit = [&] {
     try {
-      return fit_volume_data(data, options);
+      return fit_volume_data(data, options, [&](const std::string& phase) {
+        if (progress) progress->begin_phase(phase);
+      });
     } catch (const InvalidInput& e) {
       if (e.where() == "degree") throw InvalidInput(e.message(), "--degree");
       throw InvalidInput(e.message(), r.data + (e.where().empty() ? "" : ": " + e.where()));
     }
   }();
+  if (progress) progress->end_phase();
   const VolumeFitStatistics statistics = fit.statistics;
   Model model;
   model.objects.push_back({"fitted " + r.data, false, std::move(fit.volume), nullptr});
   write_model(model, r.out);
-  if (!r.stats.empty()) write_file_atomically(r.stats, statistics_json(statistics, r.data, r.degree).dump(2) + "\n");
+  if (!r.png.empty()) {
+    // The X-ray picture of the first fitted attribute (render/xray_image.h).
+    const auto& volume = std::get<DmsSplineVolume>(model.objects.front().spline);
+    XrayOptions xray;
+    xray.attribute = data.attribute_names.front();
+    if (progress) progress->begin_phase("picture");
+    write_png(XrayRenderer(volume, xray).image(), r.png);
+    if (progress) progress->end_phase();
+  }
+  if (!r.stats.empty()) write_file_atomically(r.stats, statistics_json(statistics, r.data, r.degree, r.error).dump(2) + "\n");
   const VolumeFitErrors& e = statistics.errors;
   std::cout << "wrote " << r.out << ": degree " << r.degree << " simplex spline fitted to " << e.fitted_points << " of " << e.data_points
             << " points (" << e.outside_points << " outside the domain), " << statistics.domain_tetrahedra << " tetrahedra, "
@@ -132,6 +187,20 @@ void fit_file(const FitRequest& r) {
     std::cout << "  " << f.name << " (data " << format_double(f.data_min) << " .. " << format_double(f.data_max) << "): mean square error "
               << format_double(f.mean_square) << " (normalised " << format_double(f.normalised_mean_square) << "), max "
               << format_double(f.max_abs) << " (normalised " << format_double(f.normalised_max_abs) << ")\n";
+  if (r.knots == "optimise") {
+    const KnotOptimisationReport& k = statistics.knot_optimisation;
+    std::cout << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved in " << k.sweeps
+              << " sweeps, normalised field mean square " << format_double(k.before) << " -> " << format_double(k.after) << "\n";
+  }
+  const AdaptiveRefinementReport& refinement = statistics.refinement;
+  if (r.error > 0) {
+    const std::string line = "adaptive refinement to " + format_double(r.error) + ": " + std::to_string(refinement.rounds.size() - 1) +
+                             " rounds, " + refinement_stop_text(refinement.stop) + "; " + std::to_string(refinement.above) +
+                             " tetrahedra above the bound";
+    std::cout << "  " << line << "\n";
+    // Never silent: a budget that stopped the refinement is also said on stderr.
+    if (refinement.stop != RefinementStop::Converged) reporter().warn(line);
+  }
   std::cout << "  time:";
   for (const auto& p : statistics.phases) std::cout << " " << p.name << " " << format_double(p.seconds) << " s;";
   std::cout << "\n";
@@ -142,7 +211,7 @@ void fit_file(const FitRequest& r) {
 void add_fit_command(CLI::App& app) {
   auto r = std::make_shared<FitRequest>();
   auto* cmd = app.add_subcommand("fit", "Fit scattered volume data (points with attributes) with a trivariate simplex spline "
-                                        "(Hua-He-Qin 5: domain from the data, least squares; knot optimisation not yet)");
+                                        "(Hua-He-Qin 5: domain from the data, least squares, adaptive refinement)");
   cmd->add_option("DATA", r->data,
                   "volume data: .csv (header x,y,z,...), .ply, .vtu, .vti, .vtk, .inr, .nii, or marschner-lobb:N / two-material:N")
       ->required();
@@ -150,6 +219,13 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--degree", r->degree, "the degree n, 1 to 5 (default 2)");
   cmd->add_option("--attributes", r->attributes, "the attributes to fit, comma-separated (default: all)");
   cmd->add_option("--primary-knots", r->primary_knots, "the number of primary knots (domain vertices; default: points / (2 (n+1)(n+2)), points / 24 for degree 2)");
+  cmd->add_option("--error", r->error,
+                  "adaptive refinement (Hua-He-Qin 5.4): split every tetrahedron whose RMS normalised field error is above E (default 0: none)");
+  cmd->add_option("--max-tetrahedra", r->max_tetrahedra, "the refinement's tetrahedron budget (default: 8 times the initial domain)");
+  cmd->add_option("--seconds", r->seconds, "the refinement's time budget in seconds (default: none)");
+  cmd->add_option("--knots", r->knots,
+                  "fixed (default) or optimise: move the sub-knots of vertices with a large 1-ring error (Hua-He-Qin 5.3, Levenberg-Marquardt)");
+  cmd->add_option("--png", r->png, "also write an X-ray picture of the first fitted attribute (.png)");
   cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
   cmd->callback([r] { fit_file(*r); });
 }

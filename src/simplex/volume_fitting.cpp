@@ -4,9 +4,12 @@
 #include <chrono>
 #include <cmath>
 
-#include "control_fit.h"
+#include "volume_fitting_assembly.h"
+#include "volume_fitting_solver.h"
 #include "volspline/core/error.h"
+#include "volspline/simplex/adaptive_refinement.h"
 #include "volspline/simplex/knot_clouds.h"
+#include "volspline/simplex/knot_optimisation.h"
 
 namespace volspline {
 namespace {
@@ -19,6 +22,7 @@ class PhaseClock {
     phases_.push_back({name, std::chrono::duration<double>(now - start_).count()});
     start_ = now;
   }
+  void restart() { start_ = std::chrono::steady_clock::now(); }
 
  private:
   std::vector<FitPhase>& phases_;
@@ -28,12 +32,12 @@ class PhaseClock {
 // Values of all columns of the volume at the data points (rows outside Ω: 0) and whether each
 // point lies in Ω (its basis functions sum to 1 there, to 0 outside).
 struct Collocation {
-  Eigen::SparseMatrix<double> a;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> a;
   std::vector<bool> inside;
 };
 
 Collocation collocation(const DmsSplineVolume& volume, const VolumeData& data) {
-  Collocation c{basis_matrix(volume, data.points), {}};
+  Collocation c{parallel_basis_matrix(volume, data.points), {}};
   const Eigen::VectorXd sums = c.a * Eigen::VectorXd::Ones(c.a.cols());
   c.inside.resize(data.size());
   for (std::size_t i = 0; i < data.size(); ++i) c.inside[i] = sums[static_cast<Eigen::Index>(i)] > 0.5;
@@ -128,13 +132,29 @@ VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& d
     double sum = 0;
     for (Eigen::Index i = 0; i < m; ++i)
       if (c.inside[static_cast<std::size_t>(i)]) sum += data.attributes(i, static_cast<Eigen::Index>(a));
-    prior.col(3 + static_cast<Eigen::Index>(a)).setConstant(sum / static_cast<double>(fitted));
+    if (options.prior_from_volume)
+      prior.col(3 + static_cast<Eigen::Index>(a)) = control.col(columns[a]);
+    else
+      prior.col(3 + static_cast<Eigen::Index>(a)).setConstant(sum / static_cast<double>(fitted));
   }
-  const Eigen::MatrixXd solution = solve_control_columns(c.a, targets, prior, {options.regularisation, options.refinement_steps, options.direct_limit, options.iterative_tolerance, 5000});
+  FittingSolverOptions solver;
+  solver.regularisation = options.regularisation;
+  solver.refinement_steps = options.refinement_steps;
+  solver.direct_limit = options.direct_limit;
+  solver.iterative_tolerance = options.iterative_tolerance;
+  solver.inner_tolerance = options.inner_tolerance;
+  FittingSolverReport report;
+  const Eigen::MatrixXd solution = solve_fitting_least_squares(c.a, targets, prior, solver, &report);
   control.leftCols<3>() = solution.leftCols<3>();
   for (std::size_t a = 0; a < columns.size(); ++a) control.col(columns[a]) = solution.col(3 + static_cast<Eigen::Index>(a));
-  clock.done("solve");
+  if (phases) {
+    phases->push_back({"normal equations", report.normal_seconds});
+    phases->push_back({report.direct ? "factorisation" : "preconditioner", report.factor_seconds});
+    phases->push_back({"solve", report.solve_seconds});
+  }
+  clock.restart();
   VolumeFitErrors errors = errors_at(c.a * control, data, c.inside, columns);
+  errors.solver = {report.direct, report.refinement_steps, report.iterations};
   clock.done("errors");
   return errors;
 }
@@ -147,7 +167,10 @@ VolumeFitErrors volume_fit_errors(const DmsSplineVolume& volume, const VolumeDat
   return errors_at(c.a * volume.control_vectors(), data, c.inside, columns);
 }
 
-VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& options) {
+VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& options, const std::function<void(const std::string&)>& progress) {
+  const auto announce = [&](const std::string& phase) {
+    if (progress) progress(phase);
+  };
   if (options.degree < 1 || options.degree > kMaxKnotCloudDegree)
     throw InvalidInput("expected a degree in 1.." + std::to_string(kMaxKnotCloudDegree) + ", got " + std::to_string(options.degree), "degree");
   validate_volume_data(data, "the data");
@@ -160,6 +183,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     const int n = options.degree;
     domain_options.primary_knots = std::max(4, static_cast<int>(data.size() / static_cast<std::size_t>(2 * (n + 2) * (n + 1))));
   }
+  announce("domain");
   PointCloudDomain domain = point_cloud_domain(data.points, domain_options);
   clock.done("domain");
   KnotCloudOptions cloud_options;
@@ -178,7 +202,36 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
   }
   DmsSplineVolume volume(std::move(domain.mesh), std::move(clouds), DmsControlSharing::Shared);
   statistics.control_points = static_cast<std::size_t>(volume.control_vector_count());
+  announce("least squares");
   statistics.errors = fit_control_vectors(volume, data, options.fit, &statistics.phases);
+  if (options.knots.enabled) {
+    announce("knot optimisation");
+    const auto start = std::chrono::steady_clock::now();
+    KnotOptimisationOptions knots = options.knots;
+    if (!(knots.threshold > 0) && options.refinement.error > 0) knots.threshold = options.refinement.error;
+    statistics.knot_optimisation = optimise_knots(volume, statistics.errors, data, knots, options.fit);
+    statistics.phases.push_back({"knot optimisation", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+  }
+  if (options.refinement.error > 0) {
+    announce("adaptive refinement");
+    const auto start = std::chrono::steady_clock::now();
+    AdaptiveRefinementOptions refinement = options.refinement;
+    refinement.spread = options.spread;
+    statistics.refinement = refine_volume_fit(volume, statistics.errors, data, refinement, options.fit, [&](const RefinementRound& round) {
+      announce("adaptive refinement: " + std::to_string(round.tetrahedra) + " tetrahedra");
+    });
+    statistics.phases.push_back({"adaptive refinement", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+    statistics.domain_tetrahedra = volume.domain().tetrahedra.size();
+    statistics.primary_knots = volume.domain().points.size();
+    statistics.knots = volume.knots().knots.size();
+    statistics.control_points = static_cast<std::size_t>(volume.control_vector_count());
+  } else {
+    RefinementRound unrefined;
+    unrefined.tetrahedra = statistics.domain_tetrahedra;
+    unrefined.control_points = statistics.control_points;
+    unrefined.field_mean_square = mean_normalised_field_error(statistics.errors);
+    statistics.refinement.rounds = {unrefined};
+  }
   return {std::move(volume), std::move(statistics)};
 }
 

@@ -89,6 +89,34 @@ TEST_F(FitCli, BadInputExitsWithTwoNamingTheProblem) {
   expect_bad("fit " + path("data.csv") + " --degree 9", "--degree");
   expect_bad("fit " + path("data.csv") + " --degree 3 --primary-knots 200", "too few");
   expect_bad("fit marschner-lobb:x", "marschner-lobb:N");
+  expect_bad("fit " + path("data.csv") + " --knots moving", "--knots");
+  expect_bad("fit " + path("data.csv") + " --error -1", "--error");
+  expect_bad("fit " + path("data.csv") + " --max-tetrahedra -5", "--max-tetrahedra");
+}
+
+TEST_F(FitCli, RefinementAndKnotOptimisationAreReportedInTheStatistics) {
+  // The linear field is fitted exactly: refinement converges at once, knot optimisation has
+  // nothing above its threshold to gain, and the picture is written.
+  const auto r = run("fit " + path("data.csv") + " --attributes other --error 1e-3 --max-tetrahedra 200 --knots optimise --png " +
+                     path("fit.png") + " --stats " + path("s.json") + " -o " + path("m.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(path("fit.png")));
+  const nlohmann::json s = nlohmann::json::parse(std::ifstream(path("s.json")));
+  ASSERT_TRUE(s.contains("adaptive_refinement"));
+  EXPECT_EQ(s["adaptive_refinement"]["error_bound"], 1e-3);
+  EXPECT_FALSE(s["adaptive_refinement"]["state"].get<std::string>().empty());
+  EXPECT_LE(s["domain_tetrahedra"].get<int>(), 200);
+  const auto& rounds = s["adaptive_refinement"]["rounds"];
+  for (std::size_t i = 1; i < rounds.size(); ++i)
+    if (!rounds[i]["undone"].get<bool>()) {
+      EXPECT_LE(rounds[i]["field_normalised_mean_square"].get<double>(), rounds[i - 1]["field_normalised_mean_square"].get<double>());
+    }
+  EXPECT_LE(s["knot_optimisation"]["field_normalised_mean_square_after"].get<double>(),
+            s["knot_optimisation"]["field_normalised_mean_square_before"].get<double>());
+  // A budget that stops the refinement is said on stderr.
+  if (s["adaptive_refinement"]["state"].get<std::string>().rfind("converged", 0) != 0) {
+    EXPECT_NE(r.err.find("adaptive refinement"), std::string::npos) << r.err;
+  }
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // the domain from the data (mesh/point_cloud_domain.h), generated knot clouds, and the control
 // vectors — geometry and every attribute together — by least squares at the data points, whose
 // positions are their own parameters:  min Σ_i |p_i − s(x_i, y_i, z_i)|².
-// Knot optimisation (§5.3) and adaptive refinement (§5.4) are not done yet (docs/fitting.md).
+// Knot optimisation (§5.3, simplex/knot_optimisation.h) and adaptive refinement (§5.4,
+// simplex/adaptive_refinement.h) follow in fit_volume_data when asked for (docs/fitting.md).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,15 @@ struct AttributeFitError {
   double normalised_mean_square = 0, normalised_max_abs = 0;
 };
 
+/// How eq. 10's least squares were solved.
+struct LeastSquaresSolve {
+  /// SimplicialLDLT (true) or conjugate gradients.
+  bool direct = true;
+  int tikhonov_steps = 0;
+  /// Conjugate-gradient iterations of all solves (0 when direct).
+  int iterations = 0;
+};
+
 struct VolumeFitErrors {
   /// Data points, those inside Ω (fitted), those outside (not fitted, not in the errors).
   std::size_t data_points = 0, fitted_points = 0, outside_points = 0;
@@ -38,6 +49,7 @@ struct VolumeFitErrors {
   double normalised_geometric_mean_square = 0, normalised_geometric_max = 0;
   double geometric_scale = 1;
   std::vector<AttributeFitError> attributes;
+  LeastSquaresSolve solver;
 };
 
 struct ControlVectorFitOptions {
@@ -50,6 +62,13 @@ struct ControlVectorFitOptions {
   /// it they are solved by conjugate gradients with an incomplete Cholesky preconditioner.
   long direct_limit = 8000;
   double iterative_tolerance = 1e-13;
+  /// Each conjugate-gradient solve runs to this fraction of its right-hand side; the iterated
+  /// Tikhonov steps refine it (src/simplex/volume_fitting_solver.h).
+  double inner_tolerance = 1e-6;
+  /// The prior of the attribute columns (and the conjugate gradients' start) is the volume's
+  /// current values there instead of the data mean: for refits after a refinement or a knot
+  /// move, where the old fit is a good guess.
+  bool prior_from_volume = false;
 };
 
 /// Solves eq. 10 for the control vectors of `volume` with its domain and knots fixed: columns
@@ -59,12 +78,83 @@ struct ControlVectorFitOptions {
 /// coefficient no data point sees keeps.
 /// \throw InvalidInput if the data fail validate_volume_data, or fewer data points lie inside
 /// Ω than the volume has control vectors (too few points for the degree and domain).
-/// `phases`, if given, gets the time of the basis matrix, the solve and the errors.
+/// `phases`, if given, gets the time of the basis matrix, the normal equations, the
+/// factorisation (or preconditioner), the solve and the errors.
 VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& data, const ControlVectorFitOptions& options = {},
                                     std::vector<FitPhase>* phases = nullptr);
 
 /// The errors of `volume` at the data (as fit_control_vectors reports them).
 VolumeFitErrors volume_fit_errors(const DmsSplineVolume& volume, const VolumeData& data);
+
+// The options and report of adaptive refinement (simplex/adaptive_refinement.h, §5.4).
+struct AdaptiveRefinementOptions {
+  /// ε; refinement runs only for ε > 0.
+  double error = 0;
+  /// The most domain tetrahedra (0: 8 times the initial number).
+  std::size_t max_tetrahedra = 0;
+  /// Wall-clock seconds for the whole refinement (0: none); checked between rounds.
+  double seconds = 0;
+  int max_rounds = 30;
+  /// The knot-cloud spread of new vertices (fit_volume_data passes its own).
+  double spread = 0.15;
+};
+
+enum class RefinementStop {
+  NotRequested,  // ε = 0
+  Converged,     // every tetrahedron below ε
+  TetrahedronBudget,
+  TimeBudget,
+  RoundBudget,
+  ErrorIncreased,  // the last round's refit raised the total error: undone
+  NoValidSplit,    // no split gave valid knot clouds
+  TooFewPoints,    // more control vectors than data points in Ω
+};
+
+struct RefinementRound {
+  std::size_t tetrahedra = 0, control_points = 0;
+  /// Tetrahedra above ε before this round's splits, and how many were split.
+  std::size_t above = 0, split = 0;
+  /// Mean over the attributes of the normalised field mean square error, and the largest
+  /// tetrahedron error, after the round's fit.
+  double field_mean_square = 0, largest_tetrahedron_error = 0;
+  double seconds = 0;
+  bool undone = false;
+};
+
+struct AdaptiveRefinementReport {
+  /// Round 0 is the fit before refinement.
+  std::vector<RefinementRound> rounds;
+  RefinementStop stop = RefinementStop::NotRequested;
+  /// Tetrahedra still above ε at the end.
+  std::size_t above = 0;
+};
+
+// The options and report of local knot optimisation (simplex/knot_optimisation.h, §5.3).
+struct KnotOptimisationOptions {
+  bool enabled = false;
+  /// Vertices whose 1-ring error (RMS normalised field error of the data in the tetrahedra
+  /// around them) is above this move their knots; 0: above the mean over the vertices.
+  double threshold = 0;
+  /// Passes over the vertices, each followed by a fit of all control vectors (eq. 10).
+  int sweeps = 2;
+  /// Levenberg–Marquardt iterations per vertex.
+  int iterations = 5;
+  /// The most data points of a 1-ring the objective looks at (evenly strided, deterministic).
+  int ring_points = 96;
+  /// Knots keep at least this distance from each other and the vertex, and sub-knots stay within
+  /// max_radius of the vertex, as fractions of the vertex's shortest edge.
+  double min_distance = 0.04, max_radius = 0.45;
+};
+
+struct KnotOptimisationReport {
+  int sweeps = 0;
+  /// Vertices above the threshold (each sweep), and those whose knots moved.
+  std::size_t vertices_tried = 0, vertices_moved = 0;
+  /// The mean normalised field mean square error before and after (after ≤ before: a sweep
+  /// whose refit raised it is undone).
+  double before = 0, after = 0;
+  int undone_sweeps = 0;
+};
 
 struct VolumeFitOptions {
   int degree = 2;
@@ -73,6 +163,8 @@ struct VolumeFitOptions {
   /// Knot cloud spread (knot_clouds.h).
   double spread = 0.15;
   ControlVectorFitOptions fit;
+  AdaptiveRefinementOptions refinement;
+  KnotOptimisationOptions knots;
 };
 
 struct VolumeFitStatistics {
@@ -83,6 +175,8 @@ struct VolumeFitStatistics {
   std::size_t corner_vertices = 0, curve_vertices = 0, general_vertices = 0;
   VolumeFitErrors errors;
   std::vector<FitPhase> phases;
+  AdaptiveRefinementReport refinement;
+  KnotOptimisationReport knot_optimisation;
 };
 
 struct VolumeFit {
@@ -90,9 +184,11 @@ struct VolumeFit {
   VolumeFitStatistics statistics;
 };
 
-/// The whole fit: domain, knot clouds, control vectors.
+/// The whole fit: domain, knot clouds, control vectors, then adaptive refinement when
+/// options.refinement.error > 0. `progress`, if given, hears each phase's name as it starts.
 /// \throw InvalidInput for bad data (validate_volume_data), too few or coplanar points, a degree
 /// outside 1..5, or a domain whose knot clouds cannot be made valid.
-VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& options = {});
+VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& options = {},
+                          const std::function<void(const std::string& phase)>& progress = {});
 
 }  // namespace volspline

@@ -1,0 +1,250 @@
+#include "volspline/simplex/knot_optimisation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <Eigen/Dense>
+
+#include "volspline/core/error.h"
+#include "volspline/simplex/adaptive_refinement.h"
+#include "volspline/simplex/dms_spline_evaluator.h"
+#include "volspline/simplex/dms_tetrahedron_basis.h"
+#include "volspline/simplex/knot_clouds.h"
+
+namespace volspline {
+namespace {
+
+using KnotMoveKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+KnotMoveKernel::Point_3 knot_move_point(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+}  // namespace
+
+bool knot_ring_is_valid(const TetrahedralMesh& domain, const KnotClouds& clouds, const std::vector<int>& ring) {
+  const std::vector<std::array<int, 4>> indices = knot_tetrahedron_indices(clouds.degree);
+  for (int t : ring) {
+    const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int v : tet) centroid += domain.points[static_cast<std::size_t>(v)] / 4;
+    const KnotMoveKernel::Point_3 c = knot_move_point(centroid);
+    for (const auto& index : indices) {
+      std::array<KnotMoveKernel::Point_3, 4> k;
+      for (int corner = 0; corner < 4; ++corner)
+        k[static_cast<std::size_t>(corner)] = knot_move_point(clouds.cloud(tet[static_cast<std::size_t>(corner)])[index[static_cast<std::size_t>(corner)]]);
+      if (CGAL::orientation(k[0], k[1], k[2], k[3]) != CGAL::POSITIVE) return false;
+      // The centroid strictly inside this knot tetrahedron: a point of the interior of the
+      // intersection of all of them (eq. 3) once it holds for every one.
+      if (CGAL::orientation(c, k[1], k[2], k[3]) != CGAL::POSITIVE || CGAL::orientation(k[0], c, k[2], k[3]) != CGAL::POSITIVE ||
+          CGAL::orientation(k[0], k[1], c, k[3]) != CGAL::POSITIVE || CGAL::orientation(k[0], k[1], k[2], c) != CGAL::POSITIVE)
+        return false;
+    }
+  }
+  return true;
+}
+
+KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& errors, const VolumeData& data,
+                                      const KnotOptimisationOptions& options, const ControlVectorFitOptions& fit_options) {
+  KnotOptimisationReport report;
+  report.before = report.after = mean_normalised_field_error(errors);
+  if (!options.enabled || volume.degree() < 1) return report;
+  const int n = volume.degree();
+  const auto per = static_cast<std::size_t>(n + 1);
+  const std::size_t k = data.attribute_names.size();
+  std::vector<int> columns;
+  for (const auto& name : data.attribute_names) columns.push_back(volume.attribute_column(name));
+  std::vector<double> range(k, 1);
+  for (std::size_t a = 0; a < k; ++a) {
+    const auto column = data.attributes.col(static_cast<Eigen::Index>(a));
+    const double r = column.size() ? column.maxCoeff() - column.minCoeff() : 0;
+    range[a] = r > 0 ? r : 1;
+  }
+  ControlVectorFitOptions refit = fit_options;
+  refit.prior_from_volume = true;
+  const TetrahedralMesh& domain = volume.domain();
+  const std::vector<bool> boundary = boundary_vertices(domain);
+  std::vector<std::vector<int>> rings(domain.points.size());
+  for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t)
+    for (int v : domain.tetrahedra[t]) rings[static_cast<std::size_t>(v)].push_back(static_cast<int>(t));
+  std::vector<double> shortest(domain.points.size(), INFINITY);
+  for (const auto& tet : domain.tetrahedra)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        const auto u = static_cast<std::size_t>(tet[static_cast<std::size_t>(a)]), w = static_cast<std::size_t>(tet[static_cast<std::size_t>(b)]);
+        const double e = (domain.points[u] - domain.points[w]).norm();
+        shortest[u] = std::min(shortest[u], e);
+        shortest[w] = std::min(shortest[w], e);
+      }
+
+  DmsTetrahedronBasis basis(n);
+  DmsBasisValues values;
+  for (int sweep = 0; sweep < options.sweeps; ++sweep) {
+    ++report.sweeps;
+    const TetrahedronFitErrors local = tetrahedron_fit_errors(volume, data);
+    std::vector<std::vector<std::size_t>> held(domain.tetrahedra.size());
+    for (std::size_t i = 0; i < data.size(); ++i)
+      if (local.point_tetrahedron[i] >= 0) held[static_cast<std::size_t>(local.point_tetrahedron[i])].push_back(i);
+    // The 1-ring errors and the vertices above the threshold, worst first.
+    std::vector<double> ring_error(domain.points.size(), 0);
+    double sum = 0;
+    std::size_t counted = 0;
+    for (std::size_t v = 0; v < domain.points.size(); ++v) {
+      double squares = 0;
+      std::size_t count = 0;
+      for (int t : rings[v]) {
+        squares += local.rms[static_cast<std::size_t>(t)] * local.rms[static_cast<std::size_t>(t)] * static_cast<double>(local.points[static_cast<std::size_t>(t)]);
+        count += local.points[static_cast<std::size_t>(t)];
+      }
+      if (count == 0) continue;
+      ring_error[v] = std::sqrt(squares / static_cast<double>(count));
+      sum += ring_error[v];
+      ++counted;
+    }
+    const double threshold = options.threshold > 0 ? options.threshold : sum / static_cast<double>(std::max<std::size_t>(1, counted));
+    std::vector<int> chosen;
+    for (std::size_t v = 0; v < domain.points.size(); ++v)
+      if (ring_error[v] > threshold) chosen.push_back(static_cast<int>(v));
+    std::stable_sort(chosen.begin(), chosen.end(), [&](int a, int b) { return ring_error[static_cast<std::size_t>(a)] > ring_error[static_cast<std::size_t>(b)]; });
+    report.vertices_tried += chosen.size();
+    if (chosen.empty()) break;
+
+    KnotClouds clouds = volume.knots();
+    DmsSplineEvaluator evaluator(volume);
+    const Eigen::MatrixXd& control = volume.control_vectors();
+    std::size_t moved = 0;
+    for (const int v : chosen) {
+      const auto uv = static_cast<std::size_t>(v);
+      const std::vector<int>& ring = rings[uv];
+      std::vector<std::size_t> points;
+      for (int t : ring) points.insert(points.end(), held[static_cast<std::size_t>(t)].begin(), held[static_cast<std::size_t>(t)].end());
+      if (points.size() < 3 * static_cast<std::size_t>(n)) continue;
+      std::sort(points.begin(), points.end());
+      if (points.size() > static_cast<std::size_t>(options.ring_points)) {
+        std::vector<std::size_t> strided;
+        const double step = static_cast<double>(points.size()) / options.ring_points;
+        for (int s = 0; s < options.ring_points; ++s) strided.push_back(points[static_cast<std::size_t>(s * step)]);
+        points = std::move(strided);
+      }
+      const Eigen::Index m = static_cast<Eigen::Index>(points.size() * k);
+      // The ring tetrahedra's part of the spline at the points for the knots in `c`.
+      const auto ring_part = [&](const KnotClouds& c) {
+        Eigen::VectorXd out = Eigen::VectorXd::Zero(m);
+        for (int t : ring) {
+          const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
+          const std::array<const Eigen::Vector3d*, 4> pointers{c.cloud(tet[0]), c.cloud(tet[1]), c.cloud(tet[2]), c.cloud(tet[3])};
+          for (std::size_t j = 0; j < points.size(); ++j) {
+            basis.evaluate(data.points[points[j]], pointers, 0, values);
+            for (int b = 0; b < volume.basis_per_tetrahedron(); ++b) {
+              const double value = values.values[static_cast<std::size_t>(b)];
+              if (value == 0) continue;
+              const int row = volume.control_row(t, b);
+              for (std::size_t a = 0; a < k; ++a) out[static_cast<Eigen::Index>(j * k + a)] += value * control(row, columns[a]) / range[a];
+            }
+          }
+        }
+        return out;
+      };
+      // The rest of the spline minus the data, which the knots of v do not change.
+      Eigen::VectorXd rest = -ring_part(clouds);
+      for (std::size_t j = 0; j < points.size(); ++j) {
+        const DmsSplinePoint p = evaluator.evaluate(data.points[points[j]]);
+        for (std::size_t a = 0; a < k; ++a)
+          rest[static_cast<Eigen::Index>(j * k + a)] +=
+              (p.value[columns[a]] - data.attributes(static_cast<Eigen::Index>(points[j]), static_cast<Eigen::Index>(a))) / range[a];
+      }
+      const double e = shortest[uv];
+      const Eigen::Vector3d centre = domain.points[uv];
+      // The knots of the ring's other clouds, for the minimal distance.
+      std::vector<Eigen::Vector3d> others;
+      for (int t : ring)
+        for (int w : domain.tetrahedra[static_cast<std::size_t>(t)])
+          if (w != v)
+            for (std::size_t l = 0; l <= static_cast<std::size_t>(n); ++l) others.push_back(clouds.cloud(w)[l]);
+      const auto set = [&](KnotClouds& c, const Eigen::VectorXd& theta) {
+        for (int l = 1; l <= n; ++l) c.knots[uv * per + static_cast<std::size_t>(l)] = theta.segment<3>(3 * (l - 1));
+      };
+      const auto feasible = [&](const Eigen::VectorXd& theta, KnotClouds& c) {
+        for (int l = 1; l <= n; ++l) {
+          const Eigen::Vector3d t = theta.segment<3>(3 * (l - 1));
+          const double r = (t - centre).norm();
+          if (r > options.max_radius * e || r < options.min_distance * e) return false;
+          for (int o = 1; o < l; ++o)
+            if ((t - theta.segment<3>(3 * (o - 1))).norm() < options.min_distance * e) return false;
+          for (const auto& q : others)
+            if ((t - q).norm() < options.min_distance * e) return false;
+          if (boundary[uv] && evaluator.locate(t) >= 0) return false;  // sub-knots of ∂Ω stay outside Ω (§3.2)
+        }
+        set(c, theta);
+        return knot_ring_is_valid(domain, c, ring);
+      };
+      Eigen::VectorXd theta(3 * n);
+      for (int l = 1; l <= n; ++l) theta.segment<3>(3 * (l - 1)) = clouds.cloud(v)[l];
+      const Eigen::VectorXd start = theta;
+      KnotClouds trial = clouds;
+      Eigen::VectorXd residual = rest + ring_part(clouds);
+      double cost = residual.squaredNorm();
+      const double cost_start = cost;
+      double mu = 1e-3;
+      const double h = 1e-5 * e;
+      for (int iteration = 0; iteration < options.iterations; ++iteration) {
+        Eigen::MatrixXd jacobian(m, 3 * n);
+        for (int p = 0; p < 3 * n; ++p) {
+          Eigen::VectorXd moved_theta = theta;
+          moved_theta[p] += h;
+          set(trial, moved_theta);
+          jacobian.col(p) = (rest + ring_part(trial) - residual) / h;
+        }
+        set(trial, theta);
+        const Eigen::MatrixXd normal = jacobian.transpose() * jacobian;
+        const Eigen::VectorXd gradient = jacobian.transpose() * residual;
+        bool improved = false;
+        for (int attempt = 0; attempt < 4 && !improved; ++attempt) {
+          Eigen::MatrixXd damped = normal;
+          damped.diagonal() += mu * normal.diagonal() + Eigen::VectorXd::Constant(3 * n, 1e-12 * std::max(normal.diagonal().maxCoeff(), 1e-300));
+          Eigen::VectorXd delta = -damped.ldlt().solve(gradient);
+          if (!delta.allFinite()) break;
+          if (delta.norm() > 0.1 * e) delta *= 0.1 * e / delta.norm();
+          const Eigen::VectorXd candidate = theta + delta;
+          if (feasible(candidate, trial)) {
+            const Eigen::VectorXd r = rest + ring_part(trial);
+            if (r.squaredNorm() < cost) {
+              theta = candidate, residual = r, cost = r.squaredNorm(), improved = true;
+              mu = std::max(mu * 0.3, 1e-9);
+              continue;
+            }
+          }
+          set(trial, theta);
+          mu *= 10;
+        }
+        if (!improved) break;
+      }
+      if (cost < cost_start && theta != start) {
+        set(clouds, theta);
+        ++moved;
+      } else {
+        set(trial, start);
+      }
+    }
+    report.vertices_moved += moved;
+    if (moved == 0) break;
+    try {
+      DmsSplineVolume optimised(volume.domain(), clouds, volume.sharing(), volume.attribute_names());
+      optimised.control_vectors() = volume.control_vectors();
+      VolumeFitErrors refitted = fit_control_vectors(optimised, data, refit);
+      if (mean_normalised_field_error(refitted) <= mean_normalised_field_error(errors)) {
+        volume = std::move(optimised);
+        errors = std::move(refitted);
+      } else {
+        ++report.undone_sweeps;
+        break;
+      }
+    } catch (const InvalidInput&) {
+      ++report.undone_sweeps;
+      break;
+    }
+  }
+  report.after = mean_normalised_field_error(errors);
+  return report;
+}
+
+}  // namespace volspline
