@@ -1,6 +1,6 @@
 // volspline boundary MODEL -o OUT.(ply|obj|stl|glb) [--tol T] [--max-cells N] [--bounds bezier|cone]
 //   [--method adaptive|uniform] [--resolution N] [--snap] [--stats STATS.json] [--png IMAGE.png]
-//   [--iso-attribute NAME:VALUE]...
+//   [--iso-attribute NAME:VALUE]... [--trim [--trim-cell H]]
 // Tensor-product volumes: the six faces and the surface J = 0 (Joy–Duchaineau). Simplex spline
 // volumes: the image of the domain's boundary s(∂Ω) and, with --iso-attribute, attribute
 // isosurfaces (Hua–He–Qin §6.2), as `view` samples them.
@@ -16,6 +16,7 @@
 #include "volspline/extract/simplex_boundary.h"
 #include "volspline/extract/simplex_isosurface.h"
 #include "volspline/extract/solid_boundary.h"
+#include "volspline/extract/trimmed_solid_boundary.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_formats.h"
@@ -33,6 +34,10 @@ struct BoundaryArguments {
   std::int64_t max_cells = 200000;
   int resolution = 64, face_resolution = 24, min_level = 3;
   bool snap = false;
+  /// --trim: contour the certified membership near the superset; the grid spacing relative to
+  /// the superset's diagonal.
+  bool trim = false;
+  double trim_cell = 4e-3;
   /// Simplex spline volumes: isosurfaces NAME:VALUE of attributes, and the sampling edge.
   std::vector<std::string> iso_attribute;
   double iso_edge = 0;
@@ -165,6 +170,8 @@ void run_boundary(const BoundaryArguments& a) {
       model.objects.begin(), model.objects.end(), [](const ModelObject& o) { return std::holds_alternative<DmsSplineVolume>(o.spline); }));
   if (simplex_volumes == 0 && !a.iso_attribute.empty())
     throw InvalidInput(a.input->path + " has no simplex_spline_volume object to take isosurfaces of", "--iso-attribute");
+  if (a.trim && simplex_volumes > 0)
+    throw InvalidInput(a.input->path + " has simplex spline volumes: --trim applies to tensor-product volumes only", "--trim");
   if (simplex_volumes == 0 && a.iso_edge != 0)
     throw InvalidInput(a.input->path + " has no simplex_spline_volume object to sample", "--iso-edge");
   const bool several = count_volumes(model) + simplex_volumes > 1;
@@ -183,6 +190,35 @@ void run_boundary(const BoundaryArguments& a) {
   if (simplex_volumes == 0 || count_volumes(model) > 0) {
     for_each_volume(model, a.input->path, [&](std::size_t i, const ModelObject&, const BSplineVolume& volume) {
       if (several) reporter().set_label("object " + std::to_string(i));
+      if (a.trim) {
+        ImageContouringOptions contouring;
+        contouring.cell_size = a.trim_cell;
+        contouring.superset_error = std::min(0.25, 0.5 * a.trim_cell);
+        contouring.progress = options.progress;
+        const TrimmedSolidBoundary t = trimmed_solid_boundary({volume}, options, contouring);
+        mesh.append(t.mesh);
+        const SupersetTrimmingStats& ts = t.stats;
+        stats["objects"].push_back({{"object", i},
+                                    {"superset_triangles", t.superset_triangles},
+                                    {"triangles", ts.result_triangles},
+                                    {"grid_cell_size", ts.cell_size},
+                                    {"grid_cells", ts.grid_cells},
+                                    {"membership_queries", ts.membership_queries},
+                                    {"closed", ts.closed},
+                                    {"oriented", ts.oriented},
+                                    {"self_intersection_free", ts.self_intersection_free},
+                                    {"components", ts.components},
+                                    {"volume", ts.volume},
+                                    {"seconds", {{"grid", ts.seconds_refine}, {"classify", ts.seconds_classify}, {"checks", ts.seconds_checks}}}});
+        std::cout << "object " << i << ": trimmed boundary, " << ts.result_triangles << " triangles of " << t.superset_triangles
+                  << " in the superset, volume " << std::setprecision(6) << ts.volume << ", " << ts.components << " component"
+                  << (ts.components == 1 ? "" : "s") << (ts.closed ? ", closed" : ", open") << (ts.oriented ? ", oriented" : "")
+                  << (ts.self_intersection_free ? ", no self-intersections" : ", self-intersecting") << "\n";
+        if (!ts.closed || !ts.self_intersection_free)
+          std::cerr << "volspline: warning: object " << i << ": the trimmed boundary is not a closed, self-intersection-free surface"
+                    << (ts.open_at.empty() ? "" : " (open at " + ts.open_at + ")") << "\n";
+        return;
+      }
       const SolidBoundary b = solid_boundary(volume, options);
       mesh.append(b.mesh);
       const BoundaryStats& s = b.stats;
@@ -192,7 +228,7 @@ void run_boundary(const BoundaryArguments& a) {
                 << " of max |J|, " << s.seconds_total * 1e3 << " ms\n";
     });
     reporter().set_label("");
-    add_model_stats(stats);
+    if (!a.trim) add_model_stats(stats);
   }
   RenderOptions render;
   render.width = wh[0];
@@ -220,6 +256,11 @@ void add_boundary_command(CLI::App& app) {
   cmd->add_option("--min-level", a->min_level, "adaptive: split cells the surface may cross to at least 2^-L of their Bézier piece (default 3)")->check(CLI::Range(0, 20));
   cmd->add_option("--face-resolution", a->face_resolution, "segments per direction of the face patches (default 24)")->check(CLI::Range(1, 1024));
   cmd->add_flag("--snap", a->snap, "move implicit vertices onto J = 0 by Newton steps in the domain");
+  cmd->add_flag("--trim", a->trim,
+                "tensor-product volumes: the true boundary of V([0,1]^3), the superset's parts inside a folded solid removed "
+                "(certified membership contoured on a grid; closed and oriented)");
+  cmd->add_option("--trim-cell", a->trim_cell, "with --trim: grid spacing relative to the bounding-box diagonal (default 4e-3)")
+      ->check(CLI::Range(1e-5, 0.25));
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (implicit surface in orange)");
   cmd->add_option("--size", a->size, "picture size W,H in pixels (default 800,600)");

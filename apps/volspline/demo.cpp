@@ -110,6 +110,7 @@ void add_demo_command(CLI::App& app) {
     write_blend_demo(demo);  // Peters-Wittman blends, figures 1a-4c
     write_view_demo(demo);   // Lasser §IV: isoparametric surfaces, slices, cutaways, colouring
     write_simplex_demo(demo, *simplex_inputs);  // Hua-He-Qin Figs. 1, 5, 6
+    write_sweeps_demo(demo);                    // Conkey-Joy Figs. 4-8
     demo.check_selection();
     if (!demo.selective()) {
       demo.gallery().write(*dir);

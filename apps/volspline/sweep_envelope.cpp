@@ -23,7 +23,7 @@ namespace {
 
 struct SweepEnvelopeArguments {
   std::shared_ptr<ModelInput> input;
-  std::string out, bounds = "bezier", stats, png, size = "800,600";
+  std::string out, bounds = "bezier", trimming = "auto", stats, png, size = "800,600";
   double tol = 1e-3;
   std::int64_t max_cells = 2000000;
   bool superset = false;
@@ -56,6 +56,11 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                      {"pieces_duplicate", t.pieces_duplicate},
                      {"pieces_undecided", t.pieces_undecided},
                      {"membership_queries", t.membership_queries},
+                     {"method", s.trimmed_by == EnvelopeTrimming::Arrangement ? "arrangement" : "contouring"},
+                     {"grid_cell_size", t.cell_size},
+                     {"grid_cells", t.grid_cells},
+                     {"grid_corners", t.grid_corners},
+                     {"crossings_off_superset", t.crossings_off_superset},
                      {"seconds", {{"refine", t.seconds_refine}, {"classify", t.seconds_classify}, {"checks", t.seconds_checks}}}};
     j["closed"] = t.closed;
     j["oriented"] = t.oriented;
@@ -84,6 +89,10 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   if (a.bounds == "bezier") options.bounds = JacobianBoundMethod::Bezier;
   else if (a.bounds == "cone") options.bounds = JacobianBoundMethod::Cone;
   else throw InvalidInput("expected 'bezier' or 'cone', got '" + a.bounds + "'", "--bounds");
+  if (a.trimming == "auto") options.trimming_method = EnvelopeTrimming::Automatic;
+  else if (a.trimming == "arrangement") options.trimming_method = EnvelopeTrimming::Arrangement;
+  else if (a.trimming == "contouring") options.trimming_method = EnvelopeTrimming::Contouring;
+  else throw InvalidInput("expected 'auto', 'arrangement' or 'contouring', got '" + a.trimming + "'", "--trimming");
   options.progress = command_progress();
   const Model model = [&] {
     const ProgressPhase phase(options.progress, "reading");
@@ -111,8 +120,12 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
     const auto& t = e.stats.trimming;
     std::cout << "object " << i << ": " << e.mesh.num_triangles() << " triangles";
     if (options.trim) {
-      std::cout << ", " << t.pieces << " pieces (" << t.pieces_boundary << " on the boundary, " << t.pieces_inside << " inside, "
-                << t.pieces_duplicate << " duplicate), volume " << std::setprecision(6) << t.volume << ", "
+      if (e.stats.trimmed_by == EnvelopeTrimming::Arrangement)
+        std::cout << ", " << t.pieces << " pieces (" << t.pieces_boundary << " on the boundary, " << t.pieces_inside << " inside, "
+                  << t.pieces_duplicate << " duplicate)";
+      else
+        std::cout << ", contoured on " << t.grid_cells << " grid cells of " << std::setprecision(3) << t.cell_size;
+      std::cout << ", volume " << std::setprecision(6) << t.volume << ", " << t.components << " component" << (t.components == 1 ? "" : "s") << ", "
                 << (t.closed ? "closed" : "open") << (t.oriented ? ", oriented" : "")
                 << (t.self_intersection_free ? ", no self-intersections" : ", self-intersecting");
       if (!t.closed || !t.self_intersection_free) open = true;
@@ -143,6 +156,8 @@ void add_sweep_envelope_command(CLI::App& app) {
   cmd->add_option("--tol", a->tol, "tolerance relative to the bounding-box diagonal (default 1e-3)");
   cmd->add_option("--max-cells", a->max_cells, "budget of cells per subdivision (default 2000000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
   cmd->add_option("--bounds", a->bounds, "bezier (certified Bernstein coefficients, default) or cone (the paper's cone bounds)");
+  cmd->add_option("--trimming", a->trimming,
+                  "auto (default: the arrangement for polyhedral sweeps when it closes, else contouring), arrangement or contouring");
   cmd->add_flag("--superset", a->superset, "write the paper's untrimmed superset instead of the true boundary");
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (parts coloured by source)");

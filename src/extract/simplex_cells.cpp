@@ -1,5 +1,7 @@
 #include "volspline/extract/simplex_cells.h"
 
+#include <Eigen/Geometry>
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 

@@ -263,6 +263,64 @@ enum class Verdict { KeepAsIs, Flip, Inside, Outside, Undecided };
 
 }  // namespace
 
+void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& stats) {
+  validate_mesh(mesh);
+  stats.result_triangles = static_cast<std::int64_t>(mesh.num_triangles());
+  const EdgeStatistics edges = edge_statistics(mesh);
+  stats.closed = edges.closed();
+  stats.oriented = edges.closed_and_oriented();
+  stats.boundary_edges = static_cast<std::int64_t>(edges.boundary_edges);
+  stats.nonmanifold_edges = static_cast<std::int64_t>(edges.nonmanifold_edges);
+  stats.volume = enclosed_volume(mesh);
+  if (stats.boundary_edges > 0) {
+    std::map<std::pair<int, int>, int> count;
+    for (const auto& t : mesh.triangles)
+      for (int j = 0; j < 3; ++j) {
+        const int a = t[static_cast<std::size_t>(j)], b = t[static_cast<std::size_t>((j + 1) % 3)];
+        ++count[{std::min(a, b), std::max(a, b)}];
+      }
+    std::ostringstream where;
+    int shown = 0;
+    for (const auto& [e, n] : count) {
+      if (n != 1) continue;
+      const Eigen::Vector3d m = 0.5 * (mesh.positions[static_cast<std::size_t>(e.first)] + mesh.positions[static_cast<std::size_t>(e.second)]);
+      where << (shown ? "; " : "") << m.x() << " " << m.y() << " " << m.z();
+      if (++shown == 4) break;
+    }
+    stats.open_at = where.str();
+  }
+  // Connected components by shared vertices.
+  {
+    std::vector<int> parent(mesh.num_vertices());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](int a) {
+      while (parent[static_cast<std::size_t>(a)] != a) a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+      return a;
+    };
+    for (const auto& t : mesh.triangles)
+      for (int j = 1; j < 3; ++j) parent[static_cast<std::size_t>(find(t[static_cast<std::size_t>(j)]))] = find(t[0]);
+    std::vector<bool> root(mesh.num_vertices(), false);
+    for (const auto& t : mesh.triangles) root[static_cast<std::size_t>(find(t[0]))] = true;
+    stats.components = static_cast<int>(std::count(root.begin(), root.end(), true));
+  }
+  // Self-intersections of the result as written (doubles), by CGAL's exact predicates.
+  if (mesh.num_triangles() > 0) {
+    std::vector<Point> check_points;
+    check_points.reserve(mesh.num_vertices());
+    for (const auto& p : mesh.positions) check_points.emplace_back(p.x(), p.y(), p.z());
+    std::vector<std::vector<std::size_t>> rt;
+    for (const auto& t : mesh.triangles)
+      rt.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
+    PMP::orient_polygon_soup(check_points, rt);
+    Mesh check;
+    PMP::polygon_soup_to_polygon_mesh(check_points, rt, check);
+    std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
+    PMP::self_intersections(check.faces(), check, std::back_inserter(pairs));
+    stats.self_intersecting_pairs = static_cast<std::int64_t>(pairs.size());
+    stats.self_intersection_free = pairs.empty();
+  }
+}
+
 TrimmedBoundary trim_superset(const TriangleMesh& superset, const std::vector<double>& extra,
                               const SupersetSurfacePoint& surface_point, const ImageMembershipTest& inside,
                               const SupersetTrimmingOptions& options) {
@@ -517,60 +575,7 @@ TrimmedBoundary trim_superset(const TriangleMesh& superset, const std::vector<do
       result.add_triangle(ids[0], ids[1], ids[2], superset.parts[static_cast<std::size_t>(t)]);
     }
   }
-  stats.result_triangles = static_cast<std::int64_t>(result.num_triangles());
-  const EdgeStatistics edges = edge_statistics(result);
-  stats.closed = edges.closed();
-  stats.oriented = edges.closed_and_oriented();
-  stats.boundary_edges = static_cast<std::int64_t>(edges.boundary_edges);
-  stats.nonmanifold_edges = static_cast<std::int64_t>(edges.nonmanifold_edges);
-  stats.volume = enclosed_volume(result);
-  if (stats.boundary_edges > 0) {
-    std::map<std::pair<int, int>, int> count;
-    for (const auto& t : result.triangles)
-      for (int j = 0; j < 3; ++j) {
-        const int a = t[static_cast<std::size_t>(j)], b = t[static_cast<std::size_t>((j + 1) % 3)];
-        ++count[{std::min(a, b), std::max(a, b)}];
-      }
-    std::ostringstream where;
-    int shown = 0;
-    for (const auto& [e, n] : count) {
-      if (n != 1) continue;
-      const Eigen::Vector3d m = 0.5 * (result.positions[static_cast<std::size_t>(e.first)] + result.positions[static_cast<std::size_t>(e.second)]);
-      where << (shown ? "; " : "") << m.x() << " " << m.y() << " " << m.z();
-      if (++shown == 4) break;
-    }
-    stats.open_at = where.str();
-  }
-  // Connected components by shared vertices.
-  {
-    std::vector<int> parent(result.num_vertices());
-    std::iota(parent.begin(), parent.end(), 0);
-    auto find = [&](int a) {
-      while (parent[static_cast<std::size_t>(a)] != a) a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
-      return a;
-    };
-    for (const auto& t : result.triangles)
-      for (int j = 1; j < 3; ++j) parent[static_cast<std::size_t>(find(t[static_cast<std::size_t>(j)]))] = find(t[0]);
-    std::vector<bool> root(result.num_vertices(), false);
-    for (const auto& t : result.triangles) root[static_cast<std::size_t>(find(t[0]))] = true;
-    stats.components = static_cast<int>(std::count(root.begin(), root.end(), true));
-  }
-  // Self-intersections of the result as written (doubles), by CGAL's exact predicates.
-  if (result.num_triangles() > 0) {
-    std::vector<Point> check_points;
-    check_points.reserve(result.num_vertices());
-    for (const auto& p : result.positions) check_points.emplace_back(p.x(), p.y(), p.z());
-    std::vector<std::vector<std::size_t>> rt;
-    for (const auto& t : result.triangles)
-      rt.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
-    PMP::orient_polygon_soup(check_points, rt);
-    Mesh check;
-    PMP::polygon_soup_to_polygon_mesh(check_points, rt, check);
-    std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
-    PMP::self_intersections(check.faces(), check, std::back_inserter(pairs));
-    stats.self_intersecting_pairs = static_cast<std::int64_t>(pairs.size());
-    stats.self_intersection_free = pairs.empty();
-  }
+  measure_trimmed_boundary(result, stats);
   stats.seconds_checks = seconds_since(checks_start);
   if (options.progress) options.progress->end_phase();
   return out;

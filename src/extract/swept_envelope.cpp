@@ -277,13 +277,12 @@ Eigen::Vector3d swept_envelope_point(const std::vector<BSplineHypervolume>& patc
 }
 
 SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {
+  if (!(options.contour_cell_factor > 0 && options.contour_cell_factor * options.tolerance < 0.5))
+    throw InvalidInput("expected 0 < contour_cell_factor * tolerance < 0.5", "contour_cell_factor");
   SweptEnvelope superset = swept_envelope_superset(patches, options);
   if (!options.trim) return superset;
   const auto start = Clock::now();
   const SplineImage<4> image(patches);
-  const SupersetSurfacePoint surface_point = [&](std::size_t t, const Eigen::Vector3d& b) {
-    return swept_envelope_point(patches, superset, t, b);
-  };
   const ImageMembershipTest inside = [&](const Eigen::Vector3d& x) -> std::optional<bool> {
     switch (image.classify(x)) {
       case ImageMembership::Inside: return true;
@@ -292,17 +291,40 @@ SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, con
     }
     return std::nullopt;
   };
-  SupersetTrimmingOptions trimming = options.trimming;
-  if (!trimming.progress) trimming.progress = options.progress;
-  TrimmedBoundary trimmed = trim_superset(superset.mesh, superset.times, surface_point, inside, trimming);
-  SweptEnvelope out;
-  out.stats = superset.stats;
-  out.stats.trimming = trimmed.stats;
-  out.mesh = std::move(trimmed.mesh);
-  out.times = std::move(trimmed.extra);
-  for (int v : trimmed.source_vertex) out.patches.push_back(superset.patches[static_cast<std::size_t>(v)]);
-  out.stats.seconds_total += seconds_since(start);
-  return out;
+  auto finish = [&](TrimmedBoundary trimmed, EnvelopeTrimming method) {
+    SweptEnvelope out;
+    out.stats = superset.stats;
+    out.stats.trimming = trimmed.stats;
+    out.stats.trimmed_by = method;
+    out.mesh = std::move(trimmed.mesh);
+    out.times = std::move(trimmed.extra);
+    for (int v : trimmed.source_vertex) out.patches.push_back(superset.patches[static_cast<std::size_t>(v)]);
+    out.stats.seconds_total += seconds_since(start);
+    return out;
+  };
+  bool polyhedral = true;
+  for (const auto& s : patches) {
+    polyhedral = polyhedral && !s.is_rational();
+    for (int d = 0; d < 4; ++d) polyhedral = polyhedral && s.knot_vector(d).degree() <= 1;
+  }
+  if (options.trimming_method == EnvelopeTrimming::Arrangement ||
+      (options.trimming_method == EnvelopeTrimming::Automatic && polyhedral)) {
+    const SupersetSurfacePoint surface_point = [&](std::size_t t, const Eigen::Vector3d& b) {
+      return swept_envelope_point(patches, superset, t, b);
+    };
+    SupersetTrimmingOptions trimming = options.trimming;
+    if (!trimming.progress) trimming.progress = options.progress;
+    TrimmedBoundary trimmed = trim_superset(superset.mesh, superset.times, surface_point, inside, trimming);
+    const SupersetTrimmingStats& t = trimmed.stats;
+    if (options.trimming_method == EnvelopeTrimming::Arrangement ||
+        (t.closed && t.oriented && t.self_intersection_free && t.pieces_undecided == 0))
+      return finish(std::move(trimmed), EnvelopeTrimming::Arrangement);
+  }
+  ImageContouringOptions contouring = options.contouring;
+  contouring.cell_size = options.contour_cell_factor * options.tolerance;
+  contouring.superset_error = std::min(0.25, 2 * options.tolerance);
+  if (!contouring.progress) contouring.progress = options.progress;
+  return finish(contour_image_boundary(superset.mesh, superset.times, inside, contouring), EnvelopeTrimming::Contouring);
 }
 
 }  // namespace volspline

@@ -1,6 +1,7 @@
 // Conforming longest-edge bisection: the result is a valid, face-conforming tetrahedralisation of
 // the same domain (same volume, each child inside its parent), every edge below the target, and
 // only where the input was coarse.
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>

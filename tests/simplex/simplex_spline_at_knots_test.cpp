@@ -4,6 +4,7 @@
 // sub-knots whose directions are linearly dependent), so these points lie on (near) knot planes
 // of flat fours as well: the half-open rule within rounding (docs/simplex-splines.md) must make
 // every value there the limit from the side of the perturbation x + ε e_x + ε² e_y + ε³ e_z.
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>

@@ -48,6 +48,11 @@ struct SupersetTrimmingStats {
   /// Where the result is open: up to a few boundary-edge midpoints, "x y z; ...".
   std::string open_at;
   double seconds_refine = 0, seconds_classify = 0, seconds_checks = 0;
+  /// Contouring only (extract/image_contouring.h): the grid spacing (absolute), grid cells and
+  /// corners examined, and grid edges where the boundary was found without a superset sheet
+  /// crossing them (placed by bisection instead).
+  double cell_size = 0;
+  std::int64_t grid_cells = 0, grid_corners = 0, crossings_off_superset = 0;
 };
 
 /// Where on the true surface a point of the superset is: for superset triangle `triangle` and
@@ -67,6 +72,11 @@ struct TrimmedBoundary {
   std::vector<int> source_vertex;
   SupersetTrimmingStats stats;
 };
+
+/// Fills the result half of `stats` for `mesh`: triangles, closed, oriented, boundary and
+/// non-manifold edges (and where it is open), components, volume, self-intersections (CGAL's
+/// exact predicates on the doubles). \throw InvalidInput for a malformed mesh.
+void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& stats);
 
 /// Trims `superset` (any orientation, non-manifold edges allowed) to the boundary of S.
 /// `extra` is an optional per-vertex parameter (empty or one per vertex). The membership test

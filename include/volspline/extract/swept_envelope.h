@@ -14,22 +14,32 @@
 // identically (a face moving within its own plane) is skipped: its image is a surface whose
 // points all lie on images of its 2-faces (its fibres are curves that end on them).
 //
-// The trimmed envelope (beyond the paper): the superset cut along all its mutual intersections
-// and each piece kept only if points just off it on one side are outside S (a certified
-// point-in-image test, analysis/point_in_image.h), oriented with that side outward
-// (extract/superset_trimming.h). docs/envelopes.md.
+// The trimmed envelope (beyond the paper), by a certified point-in-image test
+// (analysis/point_in_image.h) either way:
+//  - contouring (extract/image_contouring.h): membership on a grid near the superset, marching
+//    tetrahedra with vertices where grid edges cross the superset; closed, 2-manifold and
+//    oriented by construction, whatever the sheets do (coincide, touch tangentially);
+//  - the arrangement (extract/superset_trimming.h): the superset cut along all its mutual
+//    intersections, each piece kept if points just off it on one side are outside S; exact
+//    (the translated box's hull to 1e-9) but it breaks down where curved sheets coincide.
+// Automatic takes the arrangement for polyhedral sweeps (every patch polynomial of degree 1)
+// when its result is closed, oriented and free of self-intersections, else contouring.
+// docs/envelopes.md, "Trimming".
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "volspline/core/progress.h"
+#include "volspline/extract/image_contouring.h"
 #include "volspline/extract/jacobian_zero_surface.h"
 #include "volspline/extract/superset_trimming.h"
 #include "volspline/mesh/triangle_mesh.h"
 #include "volspline/spline/tensor_spline.h"
 
 namespace volspline {
+
+enum class EnvelopeTrimming { Automatic, Arrangement, Contouring };
 
 struct SweptEnvelopeOptions {
   /// Relative to the diagonal of the control points' bounding box: the chord error the face
@@ -46,7 +56,12 @@ struct SweptEnvelopeOptions {
   int min_samples = 4, max_samples = 256;
   /// Trim to the true boundary (otherwise the paper's superset).
   bool trim = true;
+  EnvelopeTrimming trimming_method = EnvelopeTrimming::Automatic;
   SupersetTrimmingOptions trimming;
+  /// Contouring: grid spacing in multiples of `tolerance` (the other contouring options as
+  /// `contouring` says; its cell_size and superset_error are set from tolerance).
+  double contour_cell_factor = 4;
+  ImageContouringOptions contouring;
   Progress* progress = nullptr;
 };
 
@@ -66,6 +81,8 @@ struct SweptEnvelopeStats {
   std::array<int, 4> samples{};
   double seconds_faces = 0, seconds_folds = 0, seconds_rank_deficient = 0, seconds_total = 0;
   SupersetTrimmingStats trimming;
+  /// Which trimming gave the result (Automatic never appears).
+  EnvelopeTrimming trimmed_by = EnvelopeTrimming::Automatic;
 };
 
 struct SweptEnvelope {

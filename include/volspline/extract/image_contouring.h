@@ -1,0 +1,52 @@
+#pragma once
+// The boundary of the image S of a spline map as the contour of its certified membership
+// (analysis/point_in_image.h) on a grid, with every vertex on a sheet of a superset of the
+// boundary (a folded trivariate solid's faces and J = 0 surface, Joy–Duchaineau 1999; a swept
+// solid's envelope, Conkey–Joy 2000): the robust alternative to cutting the superset along its
+// mutual intersections (extract/superset_trimming.h), which breaks down where curved sheets
+// coincide or touch tangentially.
+//
+// The boundary of S lies on the superset, so only grid cells near it are examined: the corners
+// of every cell the superset passes within `superset_error` of are classified, inside or
+// outside; cells with a mixed face grow the region until no mixed face is left on its border.
+// Marching tetrahedra (six Kuhn tetrahedra per cube, the same diagonal in every cube, so
+// neighbouring cells triangulate their common face alike) then give a closed, 2-manifold,
+// consistently oriented surface by construction: it is a level set of a piecewise linear
+// function at a regular value, each triangle inside one tetrahedron. Its vertices are where a
+// grid edge from an inside corner to an outside one crosses the superset (the crossing between
+// the last inside and first outside stretch, found by membership tests between crossings), so
+// they carry the sheet's source and parameters. docs/envelopes.md, "Trimming by contouring".
+#include <cstdint>
+#include <vector>
+
+#include "volspline/core/progress.h"
+#include "volspline/extract/superset_trimming.h"
+#include "volspline/mesh/triangle_mesh.h"
+
+namespace volspline {
+
+struct ImageContouringOptions {
+  /// Grid spacing relative to the superset's bounding-box diagonal. Smooth parts of the
+  /// boundary come out within about 3 h^2 / (8 r) of the true surface (r the radius of
+  /// curvature); sharp creases are cut by up to about h / 2.
+  double cell_size = 4e-3;
+  /// How far (relative to the diagonal) the true boundary may lie from the superset's
+  /// triangles: cells within it are examined.
+  double superset_error = 2e-3;
+  /// Bisection steps along a grid edge the superset does not cross.
+  int bisection_steps = 12;
+  /// Budget of grid cells (InvalidInput beyond it: choose a larger cell size).
+  std::int64_t max_cells = 20000000;
+  Progress* progress = nullptr;
+};
+
+/// The boundary of S, outward, from the superset of it and a membership test for S (called
+/// from several threads at once; undecided counts as inside). Output as trim_superset: parts,
+/// parameters and `extra` interpolated in the superset triangle each vertex lies on,
+/// source_vertex its first corner, stats measured by measure_trimmed_boundary.
+/// \throw InvalidInput for a malformed superset, `extra` not one per vertex, options out of
+/// range or a grid beyond max_cells.
+TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::vector<double>& extra,
+                                       const ImageMembershipTest& inside, const ImageContouringOptions& options = {});
+
+}  // namespace volspline
