@@ -88,6 +88,13 @@ int main(int argc, char** argv) {
   std::cout.exceptions(std::ios::badbit);
   try {
     app.parse(argc, argv);
+    // Standard output is checked first: a command whose printed result was lost has failed, and
+    // its files are not committed either.
+    if (const int code = check_standard_output(0); code != 0) {
+      outputs.reset();
+      volspline::cli::finish_reporting();
+      return code;
+    }
     outputs->commit();
     volspline::cli::finish_reporting();
   } catch (const CLI::CallForHelp& e) {

@@ -474,13 +474,13 @@ std::string read_file(const std::filesystem::path& path, std::uint64_t max_bytes
   if (fd < 0) throw IoError("cannot read '" + path.string() + "': " + std::strerror(errno));
   struct stat status {};
   ::fstat(fd, &status);
-  const auto too_large = [&](const std::string& size) {
+  const auto too_large = [&](const std::string& what) {
     ::close(fd);
-    return IoError("cannot read '" + path.string() + "': it is " + size + ", more than the input limit of " +
-                   format_byte_count(max_bytes) + " (" + memory_limit_hint() + ")");
+    return IoError("cannot read '" + path.string() + "': " + what + " the input limit of " + format_byte_count(max_bytes) + " (" +
+                   memory_limit_hint() + ")");
   };
   if (S_ISREG(status.st_mode) && static_cast<std::uint64_t>(status.st_size) > max_bytes)
-    throw too_large(format_byte_count(static_cast<std::uint64_t>(status.st_size)));
+    throw too_large("it is " + format_byte_count(static_cast<std::uint64_t>(status.st_size)) + ", more than");
   // Pipes and devices have no size: read up to the limit and refuse what goes beyond it.
   std::string contents;
   if (S_ISREG(status.st_mode)) contents.reserve(static_cast<std::size_t>(status.st_size));
@@ -495,7 +495,7 @@ std::string read_file(const std::filesystem::path& path, std::uint64_t max_bytes
     }
     if (n == 0) break;
     if (contents.size() + static_cast<std::size_t>(n) > max_bytes)
-      throw too_large(S_ISREG(status.st_mode) ? "growing beyond it" : "a stream of more than " + format_byte_count(max_bytes));
+      throw too_large(S_ISREG(status.st_mode) ? "it grew beyond" : "it is not a regular file and gave more than");
     contents.append(chunk.data(), static_cast<std::size_t>(n));
   }
   ::close(fd);

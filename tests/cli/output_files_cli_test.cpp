@@ -37,24 +37,27 @@ TEST(OutputFilesCli, AFailingOutputLeavesNoneOfTheOthersInEveryCommandThatWrites
   test_support::TemporaryDirectory dir;
   const std::string model = output_files_cli_model(dir);
   write_file_atomically(dir / "scene.json", kOutputFilesScene);
-  std::filesystem::create_directory(dir / "taken");
-  std::filesystem::create_directory(dir / "taken.png");
+  // Folders where an output should go: each named with the extension its output needs, so that
+  // the command fails at writing and not at choosing the format.
+  for (const char* folder : {"taken", "taken.png", "taken.ply", "taken.json"}) std::filesystem::create_directory(dir / folder);
   const std::string a = output_files_cli_path(dir, "a.ply"), png = output_files_cli_path(dir, "a.png");
   const std::string taken = output_files_cli_path(dir, "taken"), missing = output_files_cli_path(dir, "none/s.json");
-  // Each command with a failing output in each position: a missing folder, a folder, a folder named .png.
+  const std::string scene = output_files_cli_path(dir, "scene.json");
   const std::vector<std::string> commands{
-      "blend " + output_files_cli_path(dir, "scene.json") + " --levels 0 -o " + a + " --png " + png + " --stats " + missing,
-      "blend " + output_files_cli_path(dir, "scene.json") + " --levels 0 -o " + taken + " --png " + png,
+      "blend " + scene + " --levels 1 -o " + a + " --png " + png + " --stats " + missing,
+      "blend " + scene + " --levels 1 -o " + output_files_cli_path(dir, "taken.ply") + " --png " + png,
+      "blend " + scene + " --levels 1 -o " + a + " --png " + output_files_cli_path(dir, "taken.png"),
       "boundary " + model + " -o " + a + " --png " + png + " --stats " + taken,
       "faces " + model + " -o " + a + " --png " + output_files_cli_path(dir, "taken.png"),
-      "faces " + model + " -o " + missing + " --png " + png,
-      "view " + model + " -o " + png + " --faces --mesh " + taken,
-      "convert " + model + " -o " + taken,
+      "faces " + model + " -o " + output_files_cli_path(dir, "none/f.ply") + " --png " + png,
+      "view " + model + " -o " + png + " --faces --mesh " + output_files_cli_path(dir, "taken.ply"),
+      "convert " + model + " -o " + output_files_cli_path(dir, "taken.json"),
   };
   const std::size_t before = dir.entries();
   for (const std::string& command : commands) {
     const auto r = run_cli(command, dir.path());
     EXPECT_EQ(r.code, 2) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find("cannot write"), std::string::npos) << command << ": failed before writing: " << r.err;
     EXPECT_FALSE(std::filesystem::exists(a)) << command;
     EXPECT_FALSE(std::filesystem::exists(png)) << command;
     EXPECT_EQ(dir.entries(), before) << command << ": a file or temporary file was left behind";
@@ -160,16 +163,17 @@ TEST(OutputFilesCli, TheUnknownExtensionHintNamesTheOptionTheCommandTakes) {
 TEST(OutputFilesCli, RequestsBeyondTheLimitsAreRefusedBeforeTheWorkSayingWhatAndTheLimit) {
   test_support::TemporaryDirectory dir;
   const std::string model = output_files_cli_model(dir);
+  const std::string picture = output_files_cli_path(dir, "v.png");
   struct Case {
     std::string command, says;
   };
   const std::vector<Case> cases{
       {"convert " + model + " --elevate u:1000000 -o e.json", "64"},
-      {"view " + model + " -o v.png --slices x:1 --resolution 512", "memory limit"},
-      {"view " + model + " -o v.png --iso u:1000 --resolution 512", "memory limit"},
+      {"view " + model + " -o " + picture + " --slices x:1 --resolution 512", "memory limit"},
+      {"view " + model + " -o " + picture + " --iso u:1000 --resolution 512", "memory limit"},
       {"jacobian " + model + " --max-cells 100000000", "--max-cells 100000000"},
       {"--memory-limit 1M info --input-format json /dev/zero", "256 KiB"},
-      {"--memory-limit 64M view " + model + " -o v.png --slices x:1 --resolution 256", "64 MiB"},
+      {"--memory-limit 64M view " + model + " -o " + picture + " --slices x:1 --resolution 256", "64 MiB"},
       {"--work-limit 1000 jacobian " + model, "work limit"},
   };
   for (const Case& c : cases) {
@@ -180,7 +184,7 @@ TEST(OutputFilesCli, RequestsBeyondTheLimitsAreRefusedBeforeTheWorkSayingWhatAnd
   }
   // The environment variable sets the limit as the option does, and a raised limit lets the
   // refused request through.
-  const std::string slices = "view " + model + " -o v.png --slices x:1 --resolution 64";
+  const std::string slices = "view " + model + " -o " + picture + " --slices x:1 --resolution 64";
   EXPECT_EQ(run_cli("--memory-limit 1M " + slices, dir.path()).code, 2);
   EXPECT_EQ(std::system(("VOLSPLINE_MEMORY_LIMIT=1M " + std::string(VOLSPLINE_CLI) + " " + slices + " >/dev/null 2>&1").c_str()) >> 8, 2);
   EXPECT_EQ(run_cli("--memory-limit 1G " + slices, dir.path()).code, 0);
