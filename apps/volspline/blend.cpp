@@ -71,7 +71,7 @@ void add_blend_command(CLI::App& app) {
                        {"boundary_edges", s.boundary_edges},
                        {"nonmanifold_edges", s.nonmanifold_edges},
                        {"seconds", s.seconds}};
-      stats_text = j.dump(2) + "\n";
+      stats_text = json_text(j) + "\n";
     }
     RenderOptions render;
     render.width = wh[0];

@@ -234,7 +234,7 @@ void run_boundary(const BoundaryArguments& a) {
   render.width = wh[0];
   render.height = wh[1];
   // Everything is prepared before anything is committed: stats, mesh and picture appear together.
-  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, stats.dump(2), a.stats, options.progress);
+  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, json_text(stats), a.stats, options.progress);
 }
 
 }  // namespace

@@ -113,6 +113,17 @@ int parameter_count(const ModelObject& object) {
   return static_cast<int>(object.spline.index()) + 1;
 }
 
+std::string json_text(const nlohmann::json& value, int indent) {
+  return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+std::size_t object_index(long long index, std::size_t count, const std::string& option) {
+  if (index < 0) throw InvalidInput("expected an object index >= 0, got " + std::to_string(index), option);
+  if (static_cast<unsigned long long>(index) >= count)
+    throw InvalidInput("object " + std::to_string(index) + " does not exist; the model has " + std::to_string(count) + " object(s)", option);
+  return static_cast<std::size_t>(index);
+}
+
 std::string join_numbers(const double* values, std::size_t count) {
   std::string s;
   for (std::size_t i = 0; i < count; ++i) {

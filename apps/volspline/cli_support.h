@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "volspline/core/progress.h"
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/mesh_writer.h"
@@ -41,6 +43,13 @@ void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, Me
 void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& out, MeshFormat format, const std::string& png,
                                   const RenderOptions& options, const std::string& stats_text, const std::string& stats_path,
                                   Progress* progress);
+/// JSON text for output (stdout, --stats): strings that are not valid UTF-8 (an object name read
+/// from an IRIT file) have their invalid bytes replaced by U+FFFD instead of failing.
+std::string json_text(const nlohmann::json& value, int indent = 2);
+/// An object index given as --object: parsed as a signed number so that -1 is refused as
+/// negative rather than wrapped to 18446744073709551615.
+/// \throw InvalidInput naming `option` unless 0 <= index < count.
+std::size_t object_index(long long index, std::size_t count, const std::string& option);
 /// Formats numbers with 17 significant digits separated by spaces.
 std::string join_numbers(const double* values, std::size_t count);
 

@@ -16,6 +16,7 @@
 #include "volspline/deform/ffd.h"
 #include "volspline/deform/ffd_example.h"
 #include "volspline/deform/lattice.h"
+#include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 #include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_writer.h"
@@ -38,9 +39,10 @@ void add_demo_command(CLI::App& app) {
   cmd->add_option("--data", simplex_inputs->data,
                   "the shared data folder with volumes/bunny00.off for Hua-He-Qin Fig. 6 (default ../shared/data; skipped if absent)");
   cmd->callback([=] {
-    std::error_code ec;
-    std::filesystem::create_directories(*dir, ec);
-    if (ec || !std::filesystem::is_directory(*dir)) throw IoError("cannot create the output folder '" + *dir + "': " + ec.message());
+    // The demo reads back some of what it writes, so its files are renamed as they are written;
+    // a failed run still removes them and the folders it made.
+    if (OutputTransaction* outputs = OutputTransaction::current()) outputs->publish_each_file();
+    create_output_directories(*dir);
     DemoRun demo(*dir, *only, command_progress());
     // `make` is the `volspline make` arguments that build the same volume; empty where no
     // subcommand does (then `demo --only` reproduces it).

@@ -10,6 +10,7 @@
 #include "volspline/extract/solid_boundary.h"
 #include "volspline/construct/paper_examples.h"
 #include "volspline/construct/primitives.h"
+#include "cli_support.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/mesh/mesh_writer.h"
 #include "volspline/render/image.h"
@@ -46,7 +47,7 @@ void write_boundary_demo(DemoRun& demo) {
                                     {"max_rel_jacobian_at_vertices", b.stats.max_rel_jacobian_at_vertices},
                                     {"max_domain_distance", b.stats.max_domain_distance},
                                     {"seconds", b.stats.seconds_total}};
-      write_file_atomically(demo.path(name + "-stats.json"), stats.dump(2) + "\n");
+      write_file_atomically(demo.path(name + "-stats.json"), json_text(stats) + "\n");
     }
     std::cout << name << ": " << e.description << "; " << b.stats.cells_examined << " cells examined, " << b.stats.cells_kept
               << " kept, " << b.stats.triangles_of(Part::JacobianZero) << " implicit triangles\n  " << demo.path(name + ".ply") << "\n  "

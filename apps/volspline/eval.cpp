@@ -15,7 +15,7 @@ namespace {
 struct EvalRequest {
   std::vector<std::string> at;
   std::string grid;
-  std::size_t object = 0;
+  long long object = 0;
   bool derivatives = false;
   bool json = false;
   std::string location;  // "FILE: objects[i]" for error messages
@@ -63,12 +63,9 @@ void add_eval_command(CLI::App& app) {
   cmd->callback([=] {
     if (r->at.empty() && r->grid.empty()) throw InvalidInput("give at least one --at U,V,W or a --grid NU,NV,NW", "eval");
     const Model model = input->read();
-    if (r->object >= model.objects.size())
-      throw InvalidInput("object " + std::to_string(r->object) + " does not exist; the model has " +
-                             std::to_string(model.objects.size()) + " object(s)",
-                         "--object");
-    const auto& object = model.objects[r->object];
-    r->location = object_location(input->path, r->object);
+    const std::size_t index = object_index(r->object, model.objects.size(), "--object");
+    const auto& object = model.objects[index];
+    r->location = object_location(input->path, index);
     const auto* simplex = std::get_if<DmsSplineVolume>(&object.spline);
     const int k = simplex ? simplex->dimension() : visit_spline(object, "eval", r->location, [](const auto& s) { return s.dimension(); });
     const auto rows = evaluate_rows(object, *r);
@@ -79,7 +76,7 @@ void add_eval_command(CLI::App& app) {
         out["points"].push_back(std::vector<double>(row.begin(), row.begin() + k));
         if (r->derivatives) out["derivatives"].push_back(std::vector<double>(row.begin() + k, row.end()));
       }
-      std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::strict) << "\n";
+      std::cout << json_text(out, -1) << "\n";
       return;
     }
     std::string text;

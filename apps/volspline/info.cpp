@@ -67,7 +67,7 @@ nlohmann::json describe(const DmsSplineVolume& s) {
 
 std::string list(const nlohmann::json& a, const char* sep = " x ") {
   std::string s;
-  for (std::size_t i = 0; i < a.size(); ++i) s += (i ? sep : "") + a[i].dump();
+  for (std::size_t i = 0; i < a.size(); ++i) s += (i ? sep : "") + json_text(a[i], -1);
   return s;
 }
 
@@ -138,7 +138,7 @@ void add_info_command(CLI::App& app) {
       out["objects"].push_back(j);
     }
     if (*json) {
-      std::cout << out.dump(2) << "\n";
+      std::cout << json_text(out) << "\n";
       return;
     }
     std::cout << *model_path << ": " << model.objects.size() << " object(s)\n";

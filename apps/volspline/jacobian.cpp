@@ -9,6 +9,7 @@
 #include "progress_bar.h"
 #include "volspline/analysis/jacobian_validity.h"
 #include "volspline/core/error.h"
+#include "volspline/core/resource_limits.h"
 #include "volspline/core/format.h"
 #include "volspline/io/model_formats.h"
 #include "volspline/io/model_volumes.h"
@@ -23,7 +24,9 @@ JacobianBoundMethod parse_bounds(const std::string& text) {
   throw InvalidInput("expected 'bezier' or 'cone', got '" + text + "'", "--bounds");
 }
 
-nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(x > 0 ? "inf" : "-inf"); }
+// JSON has no infinity: an infinite bound is written null, and "bounds_finite" says whether both
+// bounds are numbers (docs/jacobian.md).
+nlohmann::json jacobian_json_number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
 void print_validity(std::size_t i, const ModelObject& object, const BSplineVolume& v, const JacobianValidity& r) {
   std::cout << "object " << i << (object.name.empty() ? "" : " (" + object.name + ")") << ": " << verdict_name(r.verdict);
@@ -53,7 +56,7 @@ void add_jacobian_command(CLI::App& app) {
   const auto input = add_model_input(cmd);
   const auto in = std::shared_ptr<std::string>(input, &input->path);
   cmd->add_option("--tol", *tol, "cells whose bound is narrower than TOL x max|J| are not split further (default 1e-12)");
-  cmd->add_option("--max-cells", *max_cells, "budget of cells examined per volume (default 200000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
+  cmd->add_option("--max-cells", *max_cells, "budget of cells examined per volume (default 200000, or fewer where the memory and work limits hold fewer; a larger explicit budget than they hold is refused)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
   cmd->add_option("--bounds", *bounds, "bezier (certified Bernstein coefficients, default) or cone (Joy–Duchaineau §5)");
   cmd->add_flag("--json", *json, "print JSON: {\"objects\": [{\"verdict\", \"orientation\", \"lower\", \"upper\", \"witness\", \"cells\", \"seconds\"}]}");
   cmd->add_flag("--fail-invalid", *fail, "exit with code 3 if any volume is invalid");
@@ -73,16 +76,24 @@ void add_jacobian_command(CLI::App& app) {
     bool any_invalid = false;
     for_each_volume(model, *in, [&](std::size_t i, const ModelObject& object, const BSplineVolume& v) {
       if (several) reporter().set_label("object " + std::to_string(i));
+      if (cmd->count("--max-cells") != 0 && v.dimension() == 3) {
+        // An explicit budget is refused, not shrunk, when the limits cannot hold it.
+        const std::int64_t allowed = jacobian_cells_within_limits(v, options.bounds);
+        if (options.max_cells > allowed)
+          throw InvalidInput("--max-cells " + std::to_string(options.max_cells) + " needs more memory or work than the limits allow (at most " +
+                             std::to_string(allowed) + " cells of this volume's degree; " + memory_limit_hint() + ", or --work-limit)");
+      }
       const JacobianValidity r = check_jacobian(v, options);
       any_invalid = any_invalid || r.verdict == JacobianVerdict::Invalid;
       nlohmann::json o = {{"object", i},
                           {"name", object.name},
                           {"verdict", verdict_name(r.verdict)},
                           {"orientation", r.orientation},
-                          {"lower", number(r.lower)},
-                          {"upper", number(r.upper)},
+                          {"lower", jacobian_json_number(r.lower)},
+                          {"upper", jacobian_json_number(r.upper)},
+                          {"bounds_finite", std::isfinite(r.lower) && std::isfinite(r.upper)},
                           {"witness", r.witness ? nlohmann::json(*r.witness) : nlohmann::json(nullptr)},
-                          {"witness_value", r.witness ? nlohmann::json(r.witness_value) : nlohmann::json(nullptr)},
+                          {"witness_value", r.witness ? jacobian_json_number(r.witness_value) : nlohmann::json(nullptr)},
                           {"rational", v.is_rational()},
                           {"cells", r.cells},
                           {"seconds", r.seconds}};
@@ -90,7 +101,7 @@ void add_jacobian_command(CLI::App& app) {
       if (!*json) print_validity(i, object, v, r);
     });
     reporter().set_label("");
-    if (*json) std::cout << out.dump(2) << "\n";
+    if (*json) std::cout << json_text(out) << "\n";
     if (*fail && any_invalid) throw ExitCode(3);
   });
 }

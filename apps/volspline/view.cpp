@@ -236,9 +236,9 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
 void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
   if (std::filesystem::path(a.image).extension() != ".png")
     throw InvalidInput("expected a picture file name ending in .png, got '" + a.image + "'", "--output");
-  if (!a.iso_attribute.empty() || std::filesystem::path(a.model).extension() == ".json") {
+  if (!a.iso_attribute.empty() || std::filesystem::path(a.model).extension() == ".json" || a.input_format == "json") {
     // A simplex spline volume has no parameter box: its own view (isosurfaces and slices).
-    const Model model = read_model_file(a.model);
+    const Model model = read_model_file(a.model, a.input_format);
     for (const ModelObject& object : model.objects)
       if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) return run_simplex_view(a, *volume, out);
     if (!a.iso_attribute.empty()) throw InvalidInput(a.model + " has no simplex_spline_volume object", "--iso-attribute");
@@ -252,7 +252,7 @@ void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
   const SolidViewPictureRequest request = picture_request_from(a);
   const Model model = [&] {
     const ProgressPhase phase(progress, "reading");
-    return read_model_file(a.model);
+    return read_model_file(a.model, a.input_format);
   }();
   const SolidViewPicture picture = solid_view_picture(model, request, progress);
   if (picture.mesh.triangles.empty()) std::cerr << "volspline: note: nothing to show: the probes miss the solid\n";
@@ -303,6 +303,7 @@ void add_view_command(CLI::App& app) {
       "view", "Picture the inside of a solid: isoparametric surfaces, slices, core sections, paddlewheels, coloured by a field");
   auto a = std::make_shared<ViewArguments>();
   cmd->add_option("MODEL", a->model, "model file (.json, .xml, .itd)")->required();
+  cmd->add_option("--input-format", a->input_format, "json, gismo, irit or vtu, overriding the extension");
   cmd->add_option("-o,--output", a->image, "picture (.png)")->required();
   cmd->add_option("--iso", a->iso, "a family of N isoparametric surfaces, u:N, v:N or w:N (ends included; repeatable)");
   cmd->add_option("--through", a->through, "the three isoparametric surfaces through V(U,V,W)");

@@ -12,7 +12,7 @@ class Progress;
 namespace volspline::cli {
 
 struct ViewArguments {
-  std::string model, image, mesh, color, range, camera, size = "800,600", through, core;
+  std::string model, input_format, image, mesh, color, range, camera, size = "800,600", through, core;
   std::vector<std::string> iso, slices, planes, paddlewheels;
   /// Isosurfaces ATTRIBUTE:VALUE of a simplex spline volume (repeatable).
   std::vector<std::string> iso_attribute;

@@ -21,7 +21,7 @@ struct XrayRequest {
   std::string out, attribute, size = "512,512", view, up, raw;
   double fov = 0;
   double absorption = std::numeric_limits<double>::quiet_NaN();
-  std::size_t object = 0;
+  long long object = 0;
 };
 
 }  // namespace
@@ -43,8 +43,9 @@ void add_xray_command(CLI::App& app) {
   cmd->callback([=] {
     const Model model = input->read();
     const DmsSplineVolume* volume = nullptr;
+    const std::size_t chosen = cmd->count("--object") ? object_index(r->object, model.objects.size(), "--object") : 0;
     for (std::size_t i = 0; i < model.objects.size() && volume == nullptr; ++i)
-      if (cmd->count("--object") == 0 || i == r->object) volume = std::get_if<DmsSplineVolume>(&model.objects[i].spline);
+      if (cmd->count("--object") == 0 || i == chosen) volume = std::get_if<DmsSplineVolume>(&model.objects[i].spline);
     if (volume == nullptr)
       throw InvalidInput(input->path + (cmd->count("--object") ? ": objects[" + std::to_string(r->object) + "] is not" : " has no") +
                              " simplex_spline_volume object (make one with `volspline make simplex-spline`)",

@@ -9,6 +9,7 @@
 
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
+#include "volspline/core/resource_limits.h"
 
 namespace volspline {
 
@@ -88,11 +89,67 @@ const char* verdict_name(JacobianVerdict verdict) {
   return "undecided";
 }
 
+namespace {
+
+// What a check costs, estimated from the degrees before it starts (docs/testing.md, "Hostile
+// input: output files and limits"). A cell holds the Bernstein coefficients of J, of degree 3p - 1
+// per direction (4p - 1 for w^4 J of a rational volume), or for the cone method the 3 coordinates
+// of its (p + 1)^3 control points. Computing J on a Bézier cell multiplies tensors of about
+// (p + 1)^3 coefficients pairwise: some 30 (p + 1)^6 multiply-adds (60 when rational); a split is
+// one de Casteljau step over every coefficient along a direction.
+struct JacobianCheckCost {
+  std::uint64_t roots = 1, cell_bytes = 0, root_operations = 0, split_operations = 0;
+};
+
+JacobianCheckCost jacobian_check_cost(const BSplineVolume& volume, JacobianBoundMethod bounds) {
+  JacobianCheckCost cost;
+  const std::uint64_t factor = volume.is_rational() ? 4 : 3;
+  std::uint64_t coefficients = 1, control = 1, longest = 1;
+  for (int d = 0; d < 3; ++d) {
+    const auto p = static_cast<std::uint64_t>(volume.knot_vector(d).degree());
+    cost.roots = saturating_product({cost.roots, static_cast<std::uint64_t>(std::max(1, volume.knot_vector(d).num_spans()))});
+    const std::uint64_t n = bounds == JacobianBoundMethod::Bezier ? factor * p + (p == 0 ? 1 : 0) : p + 1;
+    coefficients = saturating_product({coefficients, n});
+    control = saturating_product({control, p + 1});
+    longest = std::max(longest, n);
+  }
+  cost.cell_bytes = saturating_product({bounds == JacobianBoundMethod::Bezier ? coefficients : 3 * coefficients, sizeof(double)});
+  cost.root_operations = saturating_product({volume.is_rational() ? 60u : 30u, control, control});
+  cost.split_operations = saturating_product({bounds == JacobianBoundMethod::Bezier ? coefficients : 3 * coefficients, longest});
+  return cost;
+}
+
+}  // namespace
+
+std::int64_t jacobian_cells_within_limits(const BSplineVolume& volume, JacobianBoundMethod bounds) {
+  const JacobianCheckCost cost = jacobian_check_cost(volume, bounds);
+  const std::uint64_t memory = memory_limit(), work = work_limit();
+  const std::uint64_t root_bytes = saturating_product({cost.roots, cost.cell_bytes});
+  const std::uint64_t root_work = saturating_product({cost.roots, cost.root_operations});
+  if (root_bytes > memory || root_work > work) return 0;
+  const std::uint64_t by_memory = (memory - root_bytes) / std::max<std::uint64_t>(cost.cell_bytes, 1);
+  const std::uint64_t by_work = (work - root_work) / std::max<std::uint64_t>(cost.split_operations, 1);
+  const std::uint64_t cells = std::min({by_memory, by_work, std::uint64_t{1} << 62});
+  return static_cast<std::int64_t>(cells);
+}
+
 JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValidityOptions& options) {
   if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance)) {
     throw InvalidInput("tolerance must be a finite number >= 0, got " + format_double(options.tolerance));
   }
   if (options.max_cells < 1) throw InvalidInput("the cell budget must be at least 1");
+  // The budget shrinks to what the memory and work limits allow (the command line refuses an
+  // explicit --max-cells above it); Bézier cells beyond the limits on their own are refused.
+  std::int64_t max_cells = options.max_cells;
+  if (volume.dimension() == 3) {
+    const JacobianCheckCost cost = jacobian_check_cost(volume, options.bounds);
+    const std::string request = "checking the Jacobian of a degree (" + std::to_string(volume.knot_vector(0).degree()) + ", " +
+                                std::to_string(volume.knot_vector(1).degree()) + ", " + std::to_string(volume.knot_vector(2).degree()) +
+                                ") volume of " + std::to_string(cost.roots) + " Bezier cell(s)";
+    require_memory(saturating_product({cost.roots, cost.cell_bytes}), request);
+    require_work(saturating_product({cost.roots, cost.root_operations}), request);
+    max_cells = std::min(max_cells, std::max<std::int64_t>(1, jacobian_cells_within_limits(volume, options.bounds)));
+  }
   const auto start = std::chrono::steady_clock::now();
   // The number of cells needed is not known beforehand: the phase counts them.
   const ProgressPhase phase(options.progress, "certification", 0, "cells");
@@ -142,7 +199,7 @@ JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValid
     }
   }
   const double stop_width = options.tolerance * subdivision.scale();
-  while (!queue.empty() && !(positive && negative) && result.cells < options.max_cells) {
+  while (!queue.empty() && !(positive && negative) && result.cells < max_cells) {
     JacobianCell cell = queue.top();
     queue.pop();
     const int direction = subdivision.split_direction(cell, true);

@@ -1,4 +1,5 @@
 #include "volspline/extract/isoparametric_surfaces.h"
+#include "volspline/core/resource_limits.h"
 
 #include <string>
 
@@ -73,6 +74,17 @@ TriangleMesh isoparametric_surface(const BSplineVolume& volume, int direction, d
 TriangleMesh isoparametric_family(const BSplineVolume& volume, int direction, int count,
                                   const IsoparametricOptions& options) {
   if (direction < 0 || direction > 2) throw InvalidInput("expected a parameter direction 0..2, got " + std::to_string(direction));
+  if (count >= 1 && options.resolution >= 1) {
+    // Each surface is a grid of face_samples in the other two directions: per vertex its position
+    // and parameters (48 bytes) and two triangles with their parts (32 bytes), twice while the
+    // family is appended to a bigger mesh.
+    const auto a = static_cast<std::size_t>((direction + 1) % 3), b = static_cast<std::size_t>((direction + 2) % 3);
+    const std::uint64_t vertices = saturating_product({face_samples(volume.knot_vector(static_cast<int>(a)), options.resolution).size(),
+                                                       face_samples(volume.knot_vector(static_cast<int>(b)), options.resolution).size()});
+    require_memory(saturating_product({static_cast<std::uint64_t>(count), vertices, 160}),
+                   std::to_string(count) + " isoparametric surfaces of " + std::to_string(vertices) + " vertices each (--resolution " +
+                       std::to_string(options.resolution) + ")");
+  }
   TriangleMesh mesh;
   for (double value : isoparametric_values(volume.knot_vector(direction), count))
     mesh.append(isoparametric_surface(volume, direction, value, options));

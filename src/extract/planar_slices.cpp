@@ -1,4 +1,5 @@
 #include "volspline/extract/planar_slices.h"
+#include "volspline/core/resource_limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,6 +39,11 @@ struct SampledVolume {
 
   SampledVolume(const BSplineVolume& volume, int resolution) {
     for (int d = 0; d < 3; ++d) samples[static_cast<std::size_t>(d)] = face_samples(volume.knot_vector(d), resolution);
+    // The grid is the whole volume's: 3 coordinates per point and about as much again while
+    // evaluate_grid builds it (docs/testing.md, "Hostile input").
+    require_memory(saturating_product({samples[0].size(), samples[1].size(), samples[2].size(), 32}),
+                   "sampling the volume on a " + std::to_string(samples[0].size()) + " x " + std::to_string(samples[1].size()) +
+                       " x " + std::to_string(samples[2].size()) + " grid (--resolution " + std::to_string(resolution) + ")");
     points = volume.evaluate_grid(samples, 0);
     for (double x : points) scale = std::max(scale, std::abs(x));
   }

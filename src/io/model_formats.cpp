@@ -38,13 +38,13 @@ std::string list(bool extensions) {
 
 std::span<const ModelFormat> model_formats() { return kFormats; }
 
-const ModelFormat& model_format_from_path(const std::filesystem::path& path) {
+const ModelFormat& model_format_from_path(const std::filesystem::path& path, std::string_view format_option) {
   const std::string extension = lowercase(path.extension().string());
   for (const ModelFormat& f : kFormats) {
     if (extension == f.extension) return f;
   }
   throw InvalidInput("cannot tell the model format of '" + path.string() + "': expected the extension " + list(true) +
-                     " (or name the format with --format " + list(false) + ")");
+                     " (or name the format with " + std::string(format_option) + " " + list(false) + ")");
 }
 
 const ModelFormat& model_format_named(std::string_view name) {
@@ -56,7 +56,8 @@ const ModelFormat& model_format_named(std::string_view name) {
 }
 
 Model read_model_file(const std::filesystem::path& path, std::string_view format) {
-  const ModelFormat& f = format.empty() ? model_format_from_path(path) : model_format_named(format);
+  // Every command that reads a model names its format option --input-format.
+  const ModelFormat& f = format.empty() ? model_format_from_path(path, "--input-format") : model_format_named(format);
   return f.parse(read_file(path), path.string());
 }
 

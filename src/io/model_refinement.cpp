@@ -4,6 +4,8 @@
 #include <string>
 
 #include "volspline/core/error.h"
+#include "volspline/core/resource_limits.h"
+#include "volspline/io/model_file.h"
 #include "volspline/spline/attribute_spline.h"
 #include "volspline/spline/bezier_extraction.h"
 #include "volspline/spline/degree_elevation.h"
@@ -24,12 +26,32 @@ class AugmentedObject {
     for (const RefinementStep& step : steps) {
       if (step.direction < 0 || step.direction >= D)
         throw InvalidInput("direction " + std::to_string(step.direction) + " does not exist for a " + object_type_name(object));
+      if (step.elevation > 0) check_elevation(step);
       spline_ = step.elevation > 0 ? elevate_degree(spline_, step.direction, step.elevation)
                                    : refine_knots(spline_, step.direction, step.knots);
     }
   }
 
   const TensorSpline<D>& spline() const { return spline_; }
+
+  // A degree above kMaxModelDegree could not be read back; below it the new control net is
+  // counted (each span gains `elevation` control points per row) against the memory limit.
+  void check_elevation(const RefinementStep& step) const {
+    const KnotVector& kv = spline_.knot_vector(step.direction);
+    const long long degree = static_cast<long long>(kv.degree()) + step.elevation;
+    if (degree > kMaxModelDegree)
+      throw InvalidInput("elevating the degree " + std::to_string(kv.degree()) + " by " + std::to_string(step.elevation) + " gives " +
+                         std::to_string(degree) + ", more than the model format allows (" + std::to_string(kMaxModelDegree) + ")");
+    std::uint64_t points = static_cast<std::uint64_t>(spline_.dimension() + 1) * sizeof(double);
+    for (int d = 0; d < D; ++d) {
+      const std::uint64_t n = static_cast<std::uint64_t>(spline_.num_control_points()[d]);
+      points = saturating_product({points, d == step.direction ? saturating_sum({n, saturating_product({static_cast<std::uint64_t>(step.elevation),
+                                                                                                         static_cast<std::uint64_t>(spline_.knot_vector(d).num_spans())})})
+                                                             : n});
+    }
+    require_memory(saturating_product({points, 3}), "elevating the degree in direction " + std::to_string(step.direction) + " by " +
+                                                        std::to_string(step.elevation));
+  }
 
   // Stores `augmented` (this spline or a piece of it) as the geometry and attributes of `target`.
   void store(ModelObject& target, const TensorSpline<D>& augmented) const {

@@ -16,6 +16,7 @@
 #include "text_numbers.h"
 #include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/core/error.h"
+#include "volspline/core/resource_limits.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/spline/attribute_spline.h"
@@ -128,6 +129,19 @@ void write_object(Arrays& a, const TensorSpline<D>& spline, const ModelObject& o
   }
   const TensorSpline<D> augmented = append_coordinates(spline, fields);
   const auto m = static_cast<std::size_t>(augmented.dimension());
+  if (jacobian) {
+    // J at every control point of every Bézier cell: (p + 1)^3 evaluations of (p + 1)^3 terms of
+    // m + 1 coordinates and their derivatives, per cell. Degree 64 makes that ~1e12 per cell.
+    std::uint64_t points = 1, cells = 1;
+    for (int d = 0; d < D; ++d) {
+      points = saturating_product({points, static_cast<std::uint64_t>(spline.knot_vector(d).degree() + 1)});
+      cells = saturating_product({cells, static_cast<std::uint64_t>(std::max(1, spline.knot_vector(d).num_spans()))});
+    }
+    require_work(saturating_product({cells, points, points, 4 * (m + 1)}),
+                 "writing the Jacobian at the " + std::to_string(points) + " control points of each of " + std::to_string(cells) +
+                     " Bezier cells",
+                 path);
+  }
   for (const TensorSpline<D>& piece : bezier_pieces(augmented)) {
     std::array<int, 3> degrees{};
     for (int d = 0; d < D; ++d) degrees[static_cast<std::size_t>(d)] = piece.knot_vector(d).degree();

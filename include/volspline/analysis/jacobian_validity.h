@@ -53,6 +53,11 @@ struct JacobianValidity {
 /// bound first). \throw InvalidInput as JacobianSubdivision, or for options out of range.
 JacobianValidity check_jacobian(const BSplineVolume& volume, const JacobianValidityOptions& options = {});
 
+/// The largest cell budget (max_cells) the memory and work limits of core/resource_limits.h allow
+/// for `volume`, 0 if even its Bézier cells alone exceed them. check_jacobian refuses a budget
+/// above it (InvalidInput) before allocating anything.
+std::int64_t jacobian_cells_within_limits(const BSplineVolume& volume, JacobianBoundMethod bounds);
+
 /// "valid", "invalid", "undecided".
 const char* verdict_name(JacobianVerdict verdict);
 

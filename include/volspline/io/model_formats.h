@@ -29,7 +29,8 @@ std::span<const ModelFormat> model_formats();
 
 /// The format whose extension `path` has (any letter case).
 /// \throw InvalidInput naming the path and the known extensions otherwise.
-const ModelFormat& model_format_from_path(const std::filesystem::path& path);
+/// `format_option` is the option the error message suggests for naming the format instead.
+const ModelFormat& model_format_from_path(const std::filesystem::path& path, std::string_view format_option = "--format");
 
 /// The format called `name` (a name such as "gismo", or an extension with or without its dot).
 /// \throw InvalidInput listing the known names otherwise.
