@@ -315,7 +315,8 @@ void atomic_file_test_interrupted_writer(const std::filesystem::path& folder, in
 
 TEST(AtomicFileDeathTest, SigintAndSigtermRemoveTheTemporaryFilesAndExit128PlusTheSignal) {
   GTEST_FLAG_SET(death_test_style, "fast");  // the child must see this test's folder
-  for (const auto& [signal_number, code] : {std::pair(SIGINT, 130), std::pair(SIGTERM, 143)}) {
+  for (const auto& signal_and_code : {std::pair(SIGINT, 130), std::pair(SIGTERM, 143)}) {
+    const int signal_number = signal_and_code.first, code = signal_and_code.second;
     test_support::TemporaryDirectory dir;
     const std::filesystem::path folder = dir.path();
     EXPECT_EXIT(atomic_file_test_interrupted_writer(folder, signal_number), testing::ExitedWithCode(code), "");
