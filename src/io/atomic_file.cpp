@@ -185,7 +185,10 @@ std::optional<std::filesystem::path> atomic_file_backup(const std::filesystem::p
   return std::nullopt;
 }
 
-// Buffered writes to a file descriptor that remember why the first one failed.
+}  // namespace
+
+// Buffered writes to a file descriptor that remember why the first one failed. Outside the
+// anonymous namespace because AtomicFile::Impl holds one (-Wsubobject-linkage).
 class AtomicFileBuffer : public std::streambuf {
  public:
   explicit AtomicFileBuffer(int fd) : fd_(fd) { setp(buffer_.data(), buffer_.data() + buffer_.size()); }
@@ -221,8 +224,6 @@ class AtomicFileBuffer : public std::streambuf {
   int error_ = 0;
   std::array<char, 1 << 16> buffer_{};
 };
-
-}  // namespace
 
 std::string write_failure_reason(int errno_value) {
   if (errno_value == ENOSPC) return "the disk is full (no space left on the device)";

@@ -87,9 +87,12 @@ TEST(OutputFilesCli, OutputsGoThroughSymbolicLinksAndNeverOverWhatIsNotARegularF
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::is_symlink(dir / "link.ply"));
   EXPECT_GT(std::filesystem::file_size(dir / "real" / "faces.ply"), 100u);
-  r = run_cli("faces " + model + " -o /dev/null", dir.path());
+  // Something that is not a regular file but has a mesh extension: a folder.
+  std::filesystem::create_directory(dir / "folder.ply");
+  r = run_cli("faces " + model + " -o " + output_files_cli_path(dir, "folder.ply"), dir.path());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("regular file"), std::string::npos) << r.err;
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "folder.ply"));
 }
 
 TEST(OutputFilesCli, AFailureToWriteStandardOutputIsAnError) {
