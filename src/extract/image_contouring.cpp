@@ -1,5 +1,7 @@
 #include "volspline/extract/image_contouring.h"
 
+#include "clamped_barycentric.h"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -53,15 +55,8 @@ struct ContourGrid {
 };
 
 Eigen::Vector3d contour_barycentric(const Eigen::Vector3d& p, const ContourTriangle& t) {
-  const Eigen::Vector3d a(t[0].x(), t[0].y(), t[0].z()), b(t[1].x(), t[1].y(), t[1].z()), c(t[2].x(), t[2].y(), t[2].z());
-  const Eigen::Vector3d e0 = b - a, e1 = c - a, d = p - a;
-  const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = d.dot(e0), d21 = d.dot(e1);
-  const double den = d00 * d11 - d01 * d01;
-  if (!(std::abs(den) > 0)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
-  v = std::clamp(v, 0.0, 1.0);
-  w = std::clamp(w, 0.0, 1.0 - v);
-  return {1 - v - w, v, w};
+  return clamped_barycentric(p, Eigen::Vector3d(t[0].x(), t[0].y(), t[0].z()), Eigen::Vector3d(t[1].x(), t[1].y(), t[1].z()),
+                             Eigen::Vector3d(t[2].x(), t[2].y(), t[2].z()));
 }
 
 // Where the boundary crosses one grid edge: the point, and the superset triangle it lies on

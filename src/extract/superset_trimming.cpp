@@ -1,5 +1,7 @@
 #include "volspline/extract/superset_trimming.h"
 
+#include "clamped_barycentric.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -247,17 +249,6 @@ RefinedSoup refine_soup(const std::vector<Eigen::Vector3d>& positions, const std
 
 // Barycentric coordinates of p with respect to triangle (a, b, c), from the projection of p on
 // its plane; clamped to the triangle (p lies on it up to rounding).
-Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                            const Eigen::Vector3d& c) {
-  const Eigen::Vector3d e0 = b - a, e1 = c - a, d = p - a;
-  const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = d.dot(e0), d21 = d.dot(e1);
-  const double den = d00 * d11 - d01 * d01;
-  if (!(std::abs(den) > 0)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
-  v = std::clamp(v, 0.0, 1.0);
-  w = std::clamp(w, 0.0, 1.0 - v);
-  return {1 - v - w, v, w};
-}
 
 enum class Verdict { KeepAsIs, Flip, Inside, Outside, Undecided };
 
@@ -457,7 +448,7 @@ TrimmedBoundary trim_superset(const TriangleMesh& superset, const std::vector<do
       const Eigen::Vector3d centroid = (c[0] + c[1] + c[2]) / 3;
       const int t = refined.origin[f];
       const auto oc = origin_corners(t);
-      const Eigen::Vector3d x = surface_point(static_cast<std::size_t>(t), barycentric(centroid, oc[0], oc[1], oc[2]));
+      const Eigen::Vector3d x = surface_point(static_cast<std::size_t>(t), clamped_barycentric(centroid, oc[0], oc[1], oc[2]));
       const std::optional<bool> front = inside(x + offset * normal), back = inside(x - offset * normal);
       queries += 2;
       Verdict v = Verdict::Undecided;
@@ -558,7 +549,7 @@ TrimmedBoundary trim_superset(const TriangleMesh& superset, const std::vector<do
         const auto v = static_cast<std::size_t>(rf[f][static_cast<std::size_t>(k)]);
         int& id = vertex_out[v];
         if (id < 0) {
-          const Eigen::Vector3d b = barycentric(rp[v], oc[0], oc[1], oc[2]);
+          const Eigen::Vector3d b = clamped_barycentric(rp[v], oc[0], oc[1], oc[2]);
           Eigen::Vector3d param = Eigen::Vector3d::Zero();
           double e = 0;
           for (int j = 0; j < 3; ++j) {
