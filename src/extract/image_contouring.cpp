@@ -256,7 +256,17 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // The crossings: the superset's intersections with the edge, sorted along it; between the
   // inside end and the outside end, the crossing after the last stretch found inside (binary
   // search over the stretches between crossings). Off the superset: bisection.
-  ContourTree tree(triangles.cbegin(), triangles.cend());
+  // Zero-area triangles of the superset cannot be crossed (and CGAL's segment-triangle
+  // intersection requires a proper triangle): the tree holds the others, mapped back by index.
+  std::vector<ContourTriangle> proper_triangles;
+  std::vector<std::size_t> proper_source;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (!triangles[t].is_degenerate()) {
+      proper_triangles.push_back(triangles[t]);
+      proper_source.push_back(t);
+    }
+  if (proper_triangles.empty()) throw InvalidInput("the superset has no triangle of nonzero area", "superset");
+  ContourTree tree(proper_triangles.cbegin(), proper_triangles.cend());
   tree.build();
   tree.accelerate_distance_queries();
   std::vector<ContourCrossing> crossings(edges.size());
@@ -272,7 +282,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       along.emplace_back(std::clamp((Eigen::Vector3d(p.x(), p.y(), p.z()) - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0), t);
     };
     for (const Hit& hit : hits) {
-      const auto t = static_cast<std::size_t>(hit.second - triangles.cbegin());
+      const std::size_t t = proper_source[static_cast<std::size_t>(hit.second - proper_triangles.cbegin())];
       if (const auto* p = boost::get<ContourPoint>(&hit.first)) add(*p, t);
       else if (const auto* s = boost::get<ContourKernel::Segment_3>(&hit.first)) add(CGAL::midpoint(s->source(), s->target()), t);
     }
@@ -303,7 +313,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       lambda = 0.5 * (l + h);
       const Eigen::Vector3d p = a + lambda * ab;
       const auto closest = tree.closest_point_and_primitive(ContourPoint(p.x(), p.y(), p.z()));
-      x.triangle = static_cast<std::size_t>(closest.second - triangles.cbegin());
+      x.triangle = proper_source[static_cast<std::size_t>(closest.second - proper_triangles.cbegin())];
       x.on_superset = false;
       ++off_superset;
     }
