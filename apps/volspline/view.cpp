@@ -139,8 +139,9 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
                        (std::string(option) == "--faces" && a.faces) || (std::string(option) == "--cutaway" && a.cutaway);
     if (given) throw InvalidInput(std::string(option) + " works on tensor-product volumes; a simplex_spline_volume takes --iso-attribute, --slices and --plane", option);
   }
-  if (a.iso_attribute.empty() && (a.iso_edge != 0 || a.iso_subdivisions != 0))
-    throw InvalidInput("--iso-edge and --iso-subdivisions set how --iso-attribute samples; give --iso-attribute NAME:VALUE",
+  if (a.iso_attribute.empty() && a.slices.empty() && a.planes.empty() && (a.iso_edge != 0 || a.iso_subdivisions != 0))
+    throw InvalidInput("--iso-edge and --iso-subdivisions set how isosurfaces and slices sample the domain; give --iso-attribute NAME:VALUE, "
+                       "--slices or --plane",
                        a.iso_edge != 0 ? "--iso-edge" : "--iso-subdivisions");
   if (a.iso_edge != 0 && a.iso_subdivisions != 0)
     throw InvalidInput("give either --iso-edge (local bisection) or --iso-subdivisions (uniform), not both", "--iso-edge");
@@ -195,19 +196,25 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
   }
   SimplexSliceOptions slice_options;
   slice_options.attribute = color;
-  for (const Plane& plane : planes) {
-    const SimplexSlice slice = [&] {
-      try {
-        return simplex_plane_slice(volume, plane, slice_options);
-      } catch (const InvalidInput& e) {
-        throw InvalidInput(e.message(), e.message().rfind("no attribute", 0) == 0 ? "--color" : "--plane");
-      }
-    }();
+  slice_options.target_edge = a.iso_edge;
+  slice_options.subdivisions = a.iso_subdivisions;
+  const std::vector<SimplexSlice> slices = [&] {
+    try {
+      return simplex_plane_slices(volume, planes, slice_options);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(e.message(), e.message().rfind("no attribute", 0) == 0 ? "--color" : "--plane");
+    }
+  }();
+  long long sliced_tetrahedra = 0;
+  for (const SimplexSlice& slice : slices) {
     mesh.append(slice.mesh);
+    sliced_tetrahedra = slice.sampled_tetrahedra;
     if (slice.values.empty()) scalars.insert(scalars.end(), slice.mesh.num_vertices(), 0.0);
     else scalars.insert(scalars.end(), slice.values.begin(), slice.values.end());
   }
-  if (!planes.empty()) summary += "; " + std::to_string(planes.size()) + " slice(s)";
+  if (!planes.empty())
+    summary += "; " + std::to_string(planes.size()) + " slice(s) through " + std::to_string(sliced_tetrahedra) + " tetrahedra (" +
+               (a.iso_subdivisions > 0 ? "k = " + std::to_string(a.iso_subdivisions) : std::string("local bisection")) + ")";
   RenderOptions render = render_options_from(a);
   const bool colored = !planes.empty() && !color.empty();
   if (colored) {
@@ -244,7 +251,7 @@ void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
     if (!a.iso_attribute.empty()) throw InvalidInput(a.model + " has no simplex_spline_volume object", "--iso-attribute");
   }
   if (a.iso_edge != 0 || a.iso_subdivisions != 0)
-    throw InvalidInput("--iso-edge and --iso-subdivisions sample the isosurfaces of a simplex_spline_volume (--iso-attribute)",
+    throw InvalidInput("--iso-edge and --iso-subdivisions sample the isosurfaces and slices of a simplex_spline_volume",
                        a.iso_edge != 0 ? "--iso-edge" : "--iso-subdivisions");
   const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
   if (mesh_format == MeshFormat::Stl && !a.color.empty())
@@ -323,11 +330,11 @@ void add_view_command(CLI::App& app) {
       ->check(CLI::Range(0, 16));
   cmd->add_option("--iso-attribute", a->iso_attribute, "a simplex_spline_volume's isosurface NAME:VALUE of an attribute (repeatable)");
   cmd->add_option("--iso-edge", a->iso_edge,
-                  "with --iso-attribute: the domain tetrahedra are bisected, longest edge first, until every edge is at most L "
+                  "a simplex_spline_volume's isosurfaces and slices sample the domain tetrahedra bisected, longest edge first, until every edge is at most L "
                   "(domain units; default: the domain's bounding-box diagonal / 40); large tetrahedra are refined, small ones not")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--iso-subdivisions", a->iso_subdivisions,
-                  "with --iso-attribute: instead cut every domain tetrahedron alike into K x K x K sub-tetrahedra (uniform)")
+                  "isosurfaces and slices of a simplex_spline_volume instead cut every domain tetrahedron alike into K x K x K sub-tetrahedra (uniform)")
       ->check(CLI::Range(1, 64));
   cmd->add_option("--mesh", a->mesh, "also write the shown surfaces: .ply (with the field as a vertex property), .obj, .glb (field colours)");
   cmd->add_option("--resolution", a->resolution, "segments per parameter direction, plus every knot (default 32)")->check(CLI::Range(1, 512));

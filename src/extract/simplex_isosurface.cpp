@@ -12,9 +12,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "simplex_lattice.h"
+#include "simplex_sampling.h"
 #include "volspline/core/error.h"
-#include "volspline/mesh/longest_edge_bisection.h"
 #include "volspline/mesh/marching_tetrahedra.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
 
@@ -24,27 +23,10 @@ SimplexIsosurface simplex_isosurface(const DmsSplineVolume& volume, const Simple
   if (volume.attribute_names().empty()) throw InvalidInput("the volume has no attributes to take an isosurface of");
   const int column = options.attribute.empty() ? 3 : volume.attribute_column(options.attribute);
   const TetrahedralMesh& domain = volume.domain();
-  if (options.subdivisions < 0 || options.subdivisions > 64)
-    throw InvalidInput("expected 1 to 64 subdivisions per tetrahedron edge, got " + std::to_string(options.subdivisions));
-  if (!(options.target_edge >= 0) || !std::isfinite(options.target_edge))
-    throw InvalidInput("expected a target edge length >= 0, got " + std::to_string(options.target_edge));
-  std::vector<Eigen::Vector3d> sample_points;
-  std::vector<std::array<std::int64_t, 4>> sub_tetrahedra;
-  const int k = options.subdivisions;
-  if (k > 0) {
-    SimplexLattice lattice = simplex_lattice(domain, k);
-    sample_points = std::move(lattice.points);
-    sub_tetrahedra = std::move(lattice.tetrahedra);
-  } else {
-    Eigen::AlignedBox3d box;
-    for (const Eigen::Vector3d& p : domain.points) box.extend(p);
-    LongestEdgeBisectionOptions bisection;
-    bisection.target_edge = options.target_edge > 0 ? options.target_edge : box.diagonal().norm() / 40;
-    LongestEdgeBisection refined = bisect_longest_edges(domain, bisection);
-    sample_points = std::move(refined.mesh.points);
-    sub_tetrahedra.reserve(refined.mesh.tetrahedra.size());
-    for (const auto& t : refined.mesh.tetrahedra) sub_tetrahedra.push_back({t[0], t[1], t[2], t[3]});
-  }
+  SimplexSampling sampling = simplex_sampling(domain, options.subdivisions, options.target_edge);
+  const std::vector<Eigen::Vector3d>& sample_points = sampling.points;
+  const std::vector<std::array<std::int64_t, 4>>& sub_tetrahedra = sampling.tetrahedra;
+  const int k = sampling.subdivisions;
 
   // The attribute at every sample.
   std::vector<double> samples(sample_points.size());

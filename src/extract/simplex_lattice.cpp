@@ -78,18 +78,4 @@ SimplexLattice simplex_lattice(const TetrahedralMesh& domain, int k) {
   return lattice;
 }
 
-int automatic_lattice_subdivisions(const TetrahedralMesh& domain, double target_edge, int max_subdivisions) {
-  Eigen::AlignedBox3d box;
-  for (const Eigen::Vector3d& p : domain.points) box.extend(p);
-  const double target = target_edge > 0 ? target_edge : box.diagonal().norm() / 40.0;
-  double longest = 0;
-  for (const auto& t : domain.tetrahedra)
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b)
-        longest = std::max(longest, (domain.points[static_cast<std::size_t>(t[static_cast<std::size_t>(a)])] -
-                                     domain.points[static_cast<std::size_t>(t[static_cast<std::size_t>(b)])]).norm());
-  const int most = std::max(1, max_subdivisions);
-  return static_cast<int>(std::clamp(std::ceil(longest / target), 1.0, static_cast<double>(most)));
-}
-
 }  // namespace volspline

@@ -24,8 +24,4 @@ struct SimplexLattice {
 
 SimplexLattice simplex_lattice(const TetrahedralMesh& domain, int k);
 
-/// k such that the longest sub-edge is at most target_edge (0: the domain's bounding-box
-/// diagonal / 40), clamped to 1..max_subdivisions.
-int automatic_lattice_subdivisions(const TetrahedralMesh& domain, double target_edge, int max_subdivisions);
-
 }  // namespace volspline

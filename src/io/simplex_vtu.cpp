@@ -1,6 +1,9 @@
 #include "simplex_vtu.h"
 #include "vtk_data_array.h"
+#include "vtk_lagrange_tetrahedron.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 
 #include "volspline/core/error.h"
@@ -15,24 +18,39 @@ std::string simplex_spline_vtu_text(const DmsSplineVolume& volume) {
       throw InvalidInput("an attribute named \"" + name + "\" cannot be written to VTK (a clash with an array volspline writes, or XML markup); rename it",
                          "attributes");
   const TetrahedralMesh& domain = volume.domain();
-  // Nodes: the domain's points, then one per edge (its midpoint), numbered in order of appearance.
-  std::map<std::pair<int, int>, int> edge_nodes;
-  std::vector<Eigen::Vector3d> nodes(domain.points.begin(), domain.points.end());
-  static constexpr int kEdges[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};  // VTK_QUADRATIC_TETRA order
+  // One Lagrange tetrahedron per domain tetrahedron, of the spline's degree (at least 2, so that
+  // ParaView shows the curved solid even for degrees 0 and 1): degree 2 as VTK's 10-node
+  // quadratic tetrahedron (24), higher degrees as VTK's Lagrange tetrahedron (71), whose nodes
+  // sample the spline at the domain's lattice points of that order. A node shared by neighbouring
+  // tetrahedra (on a common edge or face) is written once: its key is its (domain point, weight)
+  // pairs, sorted.
+  const int order = std::max(2, volume.degree());
+  const std::vector<std::array<int, 4>> lattice = vtk_lagrange_tetrahedron_nodes(order);
+  using NodeKey = std::array<std::pair<int, int>, 4>;
+  std::map<NodeKey, int> node_index;
+  std::vector<Eigen::Vector3d> nodes;
   std::string connectivity, offsets, types, tet_index;
-  int offset = 0;
+  const std::string type = order == 2 ? "24 " : "71 ";
+  std::int64_t offset = 0;
   for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t) {
     const auto& tet = domain.tetrahedra[t];
-    for (int c = 0; c < 4; ++c) connectivity += std::to_string(tet[static_cast<std::size_t>(c)]) + ' ';
-    for (const auto& e : kEdges) {
-      const int a = tet[static_cast<std::size_t>(e[0])], b = tet[static_cast<std::size_t>(e[1])];
-      const auto [it, added] = edge_nodes.emplace(std::minmax(a, b), static_cast<int>(nodes.size()));
-      if (added) nodes.push_back((domain.points[static_cast<std::size_t>(a)] + domain.points[static_cast<std::size_t>(b)]) / 2);
+    for (const auto& l : lattice) {
+      NodeKey key;
+      key.fill({-1, 0});
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (std::size_t c = 0; c < 4; ++c) {
+        if (l[c] == 0) continue;
+        key[c] = {tet[c], l[c]};
+        x += (static_cast<double>(l[c]) / order) * domain.points[static_cast<std::size_t>(tet[c])];
+      }
+      std::sort(key.begin(), key.end());
+      const auto [it, added] = node_index.emplace(key, static_cast<int>(nodes.size()));
+      if (added) nodes.push_back(x);
       connectivity += std::to_string(it->second) + ' ';
     }
-    offset += 10;
+    offset += static_cast<std::int64_t>(lattice.size());
     offsets += std::to_string(offset) + ' ';
-    types += "24 ";
+    types += type;
     tet_index += std::to_string(t) + ' ';
   }
   DmsSplineEvaluator evaluator(volume);
@@ -45,7 +63,7 @@ std::string simplex_spline_vtu_text(const DmsSplineVolume& volume) {
   }
   std::string out = "<?xml version=\"1.0\"?>\n";
   out += "<!-- written by volspline: a degree " + std::to_string(volume.degree()) +
-         " simplex spline volume sampled on quadratic tetrahedra, one per domain tetrahedron -->\n";
+         " simplex spline volume sampled on Lagrange tetrahedra of order " + std::to_string(order) + ", one per domain tetrahedron -->\n";
   out += "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
   out += "  <UnstructuredGrid>\n";
   out += "    <Piece NumberOfPoints=\"" + std::to_string(nodes.size()) + "\" NumberOfCells=\"" + std::to_string(domain.tetrahedra.size()) + "\">\n";

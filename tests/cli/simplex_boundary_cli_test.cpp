@@ -87,8 +87,8 @@ TEST_F(SimplexBoundaryCli, UnknownAttributeExitsWithTwoAndWritesNothing) {
   EXPECT_NE(bad.err.find("NAME:VALUE"), std::string::npos) << bad.err;
 }
 
-// `view --iso-attribute` samples by local bisection (--iso-edge) or alike everywhere
-// (--iso-subdivisions), not both, and only isosurfaces.
+// `view --iso-attribute` and slices sample by local bisection (--iso-edge) or alike everywhere
+// (--iso-subdivisions), not both, and only isosurfaces and slices.
 TEST_F(SimplexBoundaryCli, ViewChoosesTheIsosurfaceSampling) {
   auto r = run("view " + path("cube.json") + " -o " + path("v.png") + " --size 64,48 --iso-attribute density:0.09 --iso-edge 0.1");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -96,8 +96,15 @@ TEST_F(SimplexBoundaryCli, ViewChoosesTheIsosurfaceSampling) {
   r = run("view " + path("cube.json") + " -o " + path("v.png") + " --size 64,48 --iso-attribute density:0.09 --iso-subdivisions 2");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("k = 2"), std::string::npos) << r.out;
+  r = run("view " + path("cube.json") + " -o " + path("v.png") + " --size 64,48 --slices z:2 --iso-edge 0.1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 slice(s) through"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(local bisection)"), std::string::npos) << r.out;
+  r = run("view " + path("cube.json") + " -o " + path("v.png") + " --size 64,48 --plane 0,0,1,0.5 --iso-subdivisions 3");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("(k = 3)"), std::string::npos) << r.out;
   std::filesystem::remove(path("v.png"));
-  for (const char* bad : {" --iso-attribute density:0.09 --iso-edge 0.1 --iso-subdivisions 2", " --slices z:2 --iso-edge 0.1"}) {
+  for (const char* bad : {" --iso-attribute density:0.09 --iso-edge 0.1 --iso-subdivisions 2", " --cells 2 --iso-edge 0.1"}) {
     r = run("view " + path("cube.json") + " -o " + path("v.png") + bad);
     EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
     EXPECT_NE(r.err.find("--iso-"), std::string::npos) << r.err;

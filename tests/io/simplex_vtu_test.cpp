@@ -1,10 +1,15 @@
 // A simplex spline volume written to VTK (io/simplex_vtu.h) as VTK's own reader (Debian's
-// python3-vtk9) sees it: one quadratic tetrahedron per domain tetrahedron whose interpolation of
-// a quadratic attribute over the identity geometry is exact, so VTK's values inside every cell
-// match the polynomial the spline reproduces.
+// python3-vtk9) sees it: one Lagrange tetrahedron of the spline's degree per domain tetrahedron.
+// A degree-n spline reproduces a degree-n polynomial attribute over the identity geometry, and
+// VTK's order-n interpolation of its node samples is then exact: VTK's values inside every cell
+// match the polynomial, which only holds if every node sits where VTK's node order expects it.
 #include <cstdlib>
 #include <fstream>
+#include <algorithm>
 #include <map>
+#include <numeric>
+#include <span>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -22,8 +27,13 @@ reader.SetFileName(sys.argv[1])
 reader.Update()
 grid = reader.GetOutput()
 density = grid.GetPointData().GetArray('density')
+degree = int(sys.argv[2])
+forms = [(1, 2, -1, 0.5), (0.3, -1, 0.2, 1), (-0.5, 0.4, 1, 0.7), (0.8, 0.1, -0.6, 1.2)][:degree]
 def f(x):
-    return (x[0] + 2 * x[1] - x[2] + 0.5) * (0.3 * x[0] - x[1] + 0.2 * x[2] + 1)
+    value = 1.0
+    for a in forms:
+        value *= a[0] * x[0] + a[1] * x[1] + a[2] * x[2] + a[3]
+    return value
 worst, count = 0.0, 0
 for c in range(grid.GetNumberOfCells()):
     cell = grid.GetCell(c)
@@ -40,21 +50,44 @@ print('checked', count)
 print('max_error', repr(worst))
 )";
 
-TEST(SimplexVtu, VtkInterpolatesTheSplineExactlyWhereItIsQuadratic) {
+// The product of the first n of four linear forms, and its blossom: the symmetric average of the
+// products of the forms at the n arguments over all n! assignments.
+constexpr double kForms[4][4] = {{1, 2, -1, 0.5}, {0.3, -1, 0.2, 1}, {-0.5, 0.4, 1, 0.7}, {0.8, 0.1, -0.6, 1.2}};
+
+double product_blossom(std::span<const Eigen::Vector3d> arguments) {
+  const int n = static_cast<int>(arguments.size());
+  std::vector<int> slot(static_cast<std::size_t>(n));
+  std::iota(slot.begin(), slot.end(), 0);
+  double sum = 0;
+  int count = 0;
+  do {
+    double term = 1;
+    for (int i = 0; i < n; ++i) {
+      const double* a = kForms[i];
+      const Eigen::Vector3d& x = arguments[static_cast<std::size_t>(slot[static_cast<std::size_t>(i)])];
+      term *= a[0] * x.x() + a[1] * x.y() + a[2] * x.z() + a[3];
+    }
+    sum += term;
+    ++count;
+  } while (std::next_permutation(slot.begin(), slot.end()));
+  return sum / count;
+}
+
+class SimplexVtuDegree : public ::testing::TestWithParam<int> {};
+
+TEST_P(SimplexVtuDegree, VtkInterpolatesTheSplineExactlyWhereItIsAPolynomialOfItsDegree) {
   if (std::system("/usr/bin/python3 -c 'import vtk' >/dev/null 2>&1") != 0) GTEST_SKIP() << "/usr/bin/python3 cannot import vtk (install python3-vtk9)";
-  DmsSplineVolume v = test_support::cube_simplex_volume(2);
-  set_column_from_blossom(v, 3, [](std::span<const Eigen::Vector3d> a) {
-    auto l1 = [](const Eigen::Vector3d& x) { return x.x() + 2 * x.y() - x.z() + 0.5; };
-    auto l2 = [](const Eigen::Vector3d& x) { return 0.3 * x.x() - x.y() + 0.2 * x.z() + 1; };
-    return (l1(a[0]) * l2(a[1]) + l1(a[1]) * l2(a[0])) / 2;
-  });
+  const int degree = GetParam();
+  DmsSplineVolume v = test_support::cube_simplex_volume(degree);
+  set_column_from_blossom(v, 3, product_blossom);
   const std::size_t cells = v.domain().tetrahedra.size();
   Model model;
   model.objects.push_back({"", false, std::move(v), nullptr});
   const test_support::TemporaryDirectory dir;
   write_vtu(model, dir / "s.vtu");
   std::ofstream(dir / "check.py") << kScript;
-  const std::string command = "/usr/bin/python3 " + (dir / "check.py").string() + " " + (dir / "s.vtu").string() + " >" + (dir / "out.txt").string() + " 2>&1";
+  const std::string command = "/usr/bin/python3 " + (dir / "check.py").string() + " " + (dir / "s.vtu").string() + " " + std::to_string(degree) + " >" +
+                              (dir / "out.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream in(dir / "out.txt");
   std::map<std::string, std::string> result;
@@ -64,10 +97,12 @@ TEST(SimplexVtu, VtkInterpolatesTheSplineExactlyWhereItIsQuadratic) {
   }
   ASSERT_TRUE(result.contains("max_error"));
   EXPECT_EQ(result.at("cells"), std::to_string(cells));
-  EXPECT_EQ(result.at("types"), "24");
+  EXPECT_EQ(result.at("types"), degree == 2 ? "24" : "71");
   EXPECT_EQ(result.at("checked"), std::to_string(3 * cells));
   EXPECT_LT(std::stod(result.at("max_error")), 1e-10);
 }
+
+INSTANTIATE_TEST_SUITE_P(Degrees, SimplexVtuDegree, ::testing::Values(2, 3, 4));
 
 TEST(SimplexVtu, RefusesAMixWithTensorProductObjects) {
   Model model;

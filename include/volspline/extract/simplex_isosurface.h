@@ -30,8 +30,6 @@ struct SimplexIsosurfaceOptions {
   int subdivisions = 0;
   /// The longest sampling edge (domain units); 0: the domain's bounding-box diagonal / 40.
   double target_edge = 0;
-  /// Unused since the default became local bisection; kept for callers that set it.
-  int max_subdivisions = 12;
   /// Root finding along edges (true) or the linear interpolation of marching tetrahedra (false).
   bool exact_vertices = true;
 };
