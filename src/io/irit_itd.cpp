@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "text_numbers.h"
+#include "volspline/core/checked_arithmetic.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
@@ -267,9 +268,10 @@ class Parser {
 
     std::uint64_t n = 1;
     for (long long c : counts) {
-      n *= static_cast<std::uint64_t>(c);
-      // More control points than tokens left cannot be there: stop before allocating for them.
-      if (n > tokens_.size() - std::min(position_, tokens_.size())) {
+      const std::optional<std::uint64_t> product = multiply_exactly<std::uint64_t>(n, c);
+      // More control points than tokens left cannot be there: stop before allocating for them
+      // (and before a product of counts could wrap).
+      if (!product || (n = *product) > tokens_.size() - std::min(position_, tokens_.size())) {
         throw InvalidInput("the header asks for more control points than the file holds", header_line);
       }
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "volspline/core/checked_arithmetic.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 
@@ -129,11 +130,14 @@ TensorSpline<D> TensorSpline<D>::from_homogeneous(std::array<KnotVector, D> knot
 template <int D>
 void TensorSpline<D>::set_counts() {
   if (dimension_ < 1) throw InvalidInput("control points need at least one coordinate");
-  total_ = 1;
-  for (int d = 0; d < D; ++d) {
-    counts_[static_cast<std::size_t>(d)] = knots_[static_cast<std::size_t>(d)].num_basis();
-    total_ *= counts_[static_cast<std::size_t>(d)];
-  }
+  for (int d = 0; d < D; ++d) counts_[static_cast<std::size_t>(d)] = knots_[static_cast<std::size_t>(d)].num_basis();
+  // Indices into the homogeneous coefficients are ints: count * (dimension + 1) must fit, or a
+  // wrapped total would make a short array of control points look complete.
+  std::array<long long, D + 1> factors{};
+  for (int d = 0; d < D; ++d) factors[static_cast<std::size_t>(d)] = counts_[static_cast<std::size_t>(d)];
+  factors[D] = static_cast<long long>(dimension_) + 1;
+  checked_product<int>(factors, "control points x (coordinates + 1)", "control_points");
+  total_ = checked_product<int>(counts_, "control points");
 }
 
 template <int D>
