@@ -301,6 +301,10 @@ Model read_document(std::string_view text) {
     throw InvalidInput(std::string("invalid XML: ") + parsed.description(),
                        reader.locator().line_and_column(static_cast<std::size_t>(std::max<std::ptrdiff_t>(parsed.offset, 0))));
   }
+  if (const xml_node deep = detail::element_deeper_than_limit(document)) {
+    throw InvalidInput("expected at most " + std::to_string(detail::kMaxXmlDepth) + " levels of nested elements, got more",
+                       reader.locator().line_and_column(static_cast<std::size_t>(std::max<std::ptrdiff_t>(deep.offset_debug(), 0))));
+  }
   const xml_node root = document.document_element();
   if (!root || std::string(root.name()) != "xml") {
     throw InvalidInput(std::string("expected the root element <xml> of a G+Smo file, got ") +

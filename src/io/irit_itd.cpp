@@ -130,18 +130,24 @@ class Parser {
     return word == "OBJECT" || word == "CURVE" || word == "SURFACE" || word == "TRIVAR";
   }
 
-  void item(Model& model, const std::string& name) {
+  /// `depth`: the OBJECTs around this item. Nested OBJECTs recurse, so their depth is bounded
+  /// (kMaxIritObjectDepth) before a hostile file can exhaust the stack.
+  void item(Model& model, const std::string& name, std::size_t depth = 0) {
     expect('[', "opening an [OBJECT ...], [CURVE ...], [SURFACE ...] or [TRIVAR ...]");
     const std::size_t keyword_at = position_;
     const std::string keyword = upper(next("OBJECT, CURVE, SURFACE or TRIVAR").text);
     if (keyword == "OBJECT") {
+      if (depth >= kMaxIritObjectDepth) {
+        position_ = keyword_at;
+        fail("a CURVE, SURFACE or TRIVAR: OBJECTs may be nested at most " + std::to_string(kMaxIritObjectDepth) + " deep");
+      }
       while (peek('[') && !next_is_geometry_or_object()) skip_group();  // [OBJECT [COLOR 4] NAME ...
       if (peek('[') || peek(']')) fail("the object's name");
       std::string object_name(next("the object's name").text);
       if (upper(object_name) == "NONE") object_name.clear();
       while (!peek(']')) {
         if (at_end()) fail("']' closing the OBJECT");
-        item(model, object_name);
+        item(model, object_name, depth + 1);
       }
       ++position_;
       return;

@@ -514,6 +514,10 @@ Model parse_vtu(std::string_view text, const std::string& source_name) {
       throw InvalidInput(std::string("invalid XML: ") + parsed.description(),
                          locator.line_and_column(static_cast<std::size_t>(std::max<std::ptrdiff_t>(parsed.offset, 0))));
     }
+    if (const pugi::xml_node deep = detail::element_deeper_than_limit(document)) {
+      throw InvalidInput("expected at most " + std::to_string(detail::kMaxXmlDepth) + " levels of nested elements, got more",
+                         locator.line_and_column(static_cast<std::size_t>(std::max<std::ptrdiff_t>(deep.offset_debug(), 0))));
+    }
     if (!document.document_element()) throw InvalidInput("expected a <VTKFile> element, got none");
     return VtuReader(text).model(document.document_element());
   } catch (const InvalidInput& e) {
