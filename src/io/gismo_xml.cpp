@@ -1,6 +1,7 @@
 #include "volspline/io/gismo_xml.h"
 
 #include <algorithm>
+#include <climits>
 #include <array>
 #include <cstdint>
 #include <set>
@@ -12,6 +13,7 @@
 
 #include "text_numbers.h"
 #include "xml_support.h"
+#include "volspline/core/checked_arithmetic.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
@@ -143,10 +145,20 @@ class Reader {
     std::array<KnotVector, D> knots =
         source_basis<D>(rational ? child(basis, "Basis", "the B-spline basis under the weights") : basis);
 
-    std::uint64_t n = 1;
-    for (const KnotVector& kv : knots) n *= static_cast<std::uint64_t>(kv.num_basis());  // <= (text size)^3
     const xml_node coefs = child(node, "coefs", "the control points, one per row");
     const auto k = static_cast<std::uint64_t>(integer_attribute(coefs, "geoDim", 1, kMaxGeoDim, true));
+    std::array<std::uint64_t, D + 1> factors{};
+    for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) factors[d] = static_cast<std::uint64_t>(knots[d].num_basis());
+    std::uint64_t n = 0;
+    try {
+      // Sizes in the spline are ints: coefficients x (geoDim + 1) numbers must fit in one.
+      factors[D] = k + 1;
+      checked_product<std::uint64_t>(factors, "coefficients (from the knot vectors) x (geoDim + 1)", {}, INT_MAX);
+      factors[D] = 1;
+      n = checked_product<std::uint64_t>(factors, "coefficients");
+    } catch (const InvalidInput& e) {
+      fail(coefs, e.message());
+    }
     const pugi::xml_attribute format = coefs.attribute("format");
     if (format && std::string(format.value()) != "ascii") {
       fail(coefs, "expected format=\"ascii\", got " + detail::quoted_token(format.value()) + " (only text matrices are read)");
@@ -288,6 +300,10 @@ Model read_document(std::string_view text) {
   if (!parsed) {
     throw InvalidInput(std::string("invalid XML: ") + parsed.description(),
                        reader.locator().line_and_column(static_cast<std::size_t>(std::max<std::ptrdiff_t>(parsed.offset, 0))));
+  }
+  if (const xml_node deep = detail::element_deeper_than_limit(document)) {
+    throw InvalidInput("expected at most " + std::to_string(detail::kMaxXmlDepth) + " levels of nested elements, got more",
+                       reader.locator().line_and_column(static_cast<std::size_t>(std::max<std::ptrdiff_t>(deep.offset_debug(), 0))));
   }
   const xml_node root = document.document_element();
   if (!root || std::string(root.name()) != "xml") {

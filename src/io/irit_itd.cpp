@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "text_numbers.h"
+#include "volspline/core/checked_arithmetic.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
@@ -129,18 +130,24 @@ class Parser {
     return word == "OBJECT" || word == "CURVE" || word == "SURFACE" || word == "TRIVAR";
   }
 
-  void item(Model& model, const std::string& name) {
+  /// `depth`: the OBJECTs around this item. Nested OBJECTs recurse, so their depth is bounded
+  /// (kMaxIritObjectDepth) before a hostile file can exhaust the stack.
+  void item(Model& model, const std::string& name, std::size_t depth = 0) {
     expect('[', "opening an [OBJECT ...], [CURVE ...], [SURFACE ...] or [TRIVAR ...]");
     const std::size_t keyword_at = position_;
     const std::string keyword = upper(next("OBJECT, CURVE, SURFACE or TRIVAR").text);
     if (keyword == "OBJECT") {
+      if (depth >= kMaxIritObjectDepth) {
+        position_ = keyword_at;
+        fail("a CURVE, SURFACE or TRIVAR: OBJECTs may be nested at most " + std::to_string(kMaxIritObjectDepth) + " deep");
+      }
       while (peek('[') && !next_is_geometry_or_object()) skip_group();  // [OBJECT [COLOR 4] NAME ...
       if (peek('[') || peek(']')) fail("the object's name");
       std::string object_name(next("the object's name").text);
       if (upper(object_name) == "NONE") object_name.clear();
       while (!peek(']')) {
         if (at_end()) fail("']' closing the OBJECT");
-        item(model, object_name);
+        item(model, object_name, depth + 1);
       }
       ++position_;
       return;
@@ -267,9 +274,10 @@ class Parser {
 
     std::uint64_t n = 1;
     for (long long c : counts) {
-      n *= static_cast<std::uint64_t>(c);
-      // More control points than tokens left cannot be there: stop before allocating for them.
-      if (n > tokens_.size() - std::min(position_, tokens_.size())) {
+      const std::optional<std::uint64_t> product = multiply_exactly<std::uint64_t>(n, c);
+      // More control points than tokens left cannot be there: stop before allocating for them
+      // (and before a product of counts could wrap).
+      if (!product || (n = *product) > tokens_.size() - std::min(position_, tokens_.size())) {
         throw InvalidInput("the header asks for more control points than the file holds", header_line);
       }
     }

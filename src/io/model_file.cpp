@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "volspline/core/checked_arithmetic.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
@@ -129,12 +130,9 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
   const std::string points_path = json_key_path(path, "control_points");
   const json& points_json = required(object, "control_points", path, "an array of control points, u fastest");
   if (!points_json.is_array()) fail("an array of control points (arrays of numbers)", points_json, points_path);
-  std::uint64_t expected = 1;
-  bool overflow = false;
-  for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
-    if (counts[d] != 0 && expected > static_cast<std::uint64_t>(INT_MAX) / counts[d]) overflow = true;
-    if (!overflow) expected *= counts[d];
-  }
+  const std::optional<std::uint64_t> product = product_exactly<std::uint64_t>(counts);
+  const bool overflow = !product || *product > static_cast<std::uint64_t>(INT_MAX);
+  const std::uint64_t expected = overflow ? 0 : *product;
   if (overflow || expected != points_json.size()) {
     const std::string from = type.bezier ? " from the degrees" : " from the degrees and knots";
     throw InvalidInput(
@@ -150,8 +148,15 @@ TensorSpline<D> read_spline(const json& object, const std::string& path, const T
   }
   const std::size_t k = first.size();
   if (k > static_cast<std::size_t>(INT_MAX)) fail("a control point with fewer coordinates", first, json_index_path(points_path, 0));
+  // Only control_points[0] has been seen: n x (k + 1) numbers must fit the spline's int sizes
+  // before anything is sized by that product.
+  try {
+    checked_product<std::size_t>({n, k + 1}, "control points x (coordinates + 1)", {}, static_cast<std::size_t>(INT_MAX));
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(e.message(), points_path);
+  }
   std::vector<double> points;
-  points.reserve(n * k);
+  points.reserve(std::min<std::size_t>(n * k, std::size_t{1} << 20));
   for (std::size_t i = 0; i < n; ++i) {
     const json& point = points_json[i];
     const std::string at = json_index_path(points_path, i);

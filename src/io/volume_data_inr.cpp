@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "text_numbers.h"
+#include "volspline/core/checked_arithmetic.h"
 #include "volspline/core/error.h"
 #include "volspline/io/volume_data.h"
 
@@ -121,10 +122,9 @@ VolumeData parse_inrimage(std::string_view bytes, const std::string& source) {
   const Eigen::Vector3d origin(real("TX", 0, false), real("TY", 0, false), real("TZ", 0, false));
 
   const int value_bytes = bits / 8;
-  const long long voxels = nx * ny * nz;
-  if (voxels > (1LL << 28) || voxels * nv > (1LL << 28))
-    throw InvalidInput("the image has " + std::to_string(voxels * nv) + " values, more than the 2^28 read", source + ": header");
-  const std::size_t needed = static_cast<std::size_t>(voxels * nv * value_bytes);
+  const long long voxels = checked_product<long long>({nx, ny, nz}, "voxels: XDIM x YDIM x ZDIM", source + ": header", 1LL << 28);
+  checked_product<long long>({nx, ny, nz, nv}, "values: XDIM x YDIM x ZDIM x VDIM", source + ": header", 1LL << 28);
+  const std::size_t needed = checked_product<std::size_t>({voxels, nv, static_cast<long long>(value_bytes)}, "bytes of the image", source + ": header");
   if (bytes.size() < header_size || bytes.size() - header_size < needed)
     throw InvalidInput("truncated: the header declares " + std::to_string(nx) + " x " + std::to_string(ny) + " x " + std::to_string(nz) +
                            " x " + std::to_string(nv) + " values of " + std::to_string(value_bytes) + " bytes (" +

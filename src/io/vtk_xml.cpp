@@ -15,6 +15,7 @@
 
 #include "text_numbers.h"
 #include "volspline/analysis/jacobian_determinant.h"
+#include "volspline/core/checked_arithmetic.h"
 #include "volspline/core/error.h"
 #include "volspline/core/resource_limits.h"
 #include "volspline/core/format.h"
@@ -373,7 +374,7 @@ class VtuReader {
     if (std::string(points_array.attribute("NumberOfComponents").value()) != "3") {
       fail(points_array, "expected NumberOfComponents=\"3\"");
     }
-    const std::vector<double> points = numbers(points_array, 3 * n_points, "3 per point, NumberOfPoints = " + std::to_string(n_points));
+    const std::vector<double> points = numbers(points_array, checked_product<std::uint64_t>({n_points, std::uint64_t{3}}, "coordinates: NumberOfPoints x 3"), "3 per point, NumberOfPoints = " + std::to_string(n_points));
     for (double x : points) {
       if (std::isnan(x)) fail(points_array, "expected finite coordinates, got NaN");
     }
@@ -406,7 +407,7 @@ class VtuReader {
     std::vector<long long> degrees;
     if (const xml_node cell_data = piece.child("CellData")) {
       const std::string name = cell_data.attribute("HigherOrderDegrees").value();
-      if (!name.empty()) degrees = integers(named_array(cell_data, name), 3 * n_cells, 0, kMaxModelDegree, "3 per cell");
+      if (!name.empty()) degrees = integers(named_array(cell_data, name), checked_product<std::uint64_t>({n_cells, std::uint64_t{3}}, "degrees: NumberOfCells x 3"), 0, kMaxModelDegree, "3 per cell");
     }
 
     long long start = 0;
@@ -430,14 +431,17 @@ class VtuReader {
         const double root = std::round(std::pow(static_cast<double>(count), 1.0 / parameters));
         for (int d = 0; d < parameters; ++d) degree[static_cast<std::size_t>(d)] = static_cast<int>(root) - 1;
       }
-      std::size_t expected = 1;
+      std::array<std::size_t, 3> orders{1, 1, 1};
       std::string shown;
       for (int d = 0; d < parameters; ++d) {
-        expected *= static_cast<std::size_t>(std::max(degree[static_cast<std::size_t>(d)], 0) + 1);
+        orders[static_cast<std::size_t>(d)] = static_cast<std::size_t>(std::max(degree[static_cast<std::size_t>(d)], 0) + 1);
         if (d) shown += ' ';
         shown += std::to_string(degree[static_cast<std::size_t>(d)]);
       }
-      bool valid = true;
+      // Degrees guessed from the count without HigherOrderDegrees are not bounded by the format.
+      const std::optional<std::size_t> product = product_exactly<std::size_t>(orders);
+      const std::size_t expected = product.value_or(0);
+      bool valid = product.has_value();
       for (int d = 0; d < parameters; ++d) valid = valid && degree[static_cast<std::size_t>(d)] >= 1;
       if (!valid || count != expected) {
         fail(named_array(cells, "offsets"), "cell " + std::to_string(c) + " has " + std::to_string(count) + " points, expected " +
@@ -509,6 +513,10 @@ Model parse_vtu(std::string_view text, const std::string& source_name) {
     if (!parsed) {
       throw InvalidInput(std::string("invalid XML: ") + parsed.description(),
                          locator.line_and_column(static_cast<std::size_t>(std::max<std::ptrdiff_t>(parsed.offset, 0))));
+    }
+    if (const pugi::xml_node deep = detail::element_deeper_than_limit(document)) {
+      throw InvalidInput("expected at most " + std::to_string(detail::kMaxXmlDepth) + " levels of nested elements, got more",
+                         locator.line_and_column(static_cast<std::size_t>(std::max<std::ptrdiff_t>(deep.offset_debug(), 0))));
     }
     if (!document.document_element()) throw InvalidInput("expected a <VTKFile> element, got none");
     return VtuReader(text).model(document.document_element());

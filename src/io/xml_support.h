@@ -2,6 +2,7 @@
 // Helpers shared by the XML readers (G+Smo, VTK): where a node is, for messages, and the
 // whitespace-separated tokens of an element's character data.
 #include <algorithm>
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -60,6 +61,34 @@ class Locator {
 
   std::string_view text_;
 };
+
+/// Deepest nesting of elements the XML readers accept. pugixml parses iteratively, so no depth
+/// exhausts the stack there, but the readers and what they hand on (paths in messages, VTK) walk
+/// up and down the tree; G+Smo and VTK files need 6 levels, the rest is room for extensions.
+inline constexpr std::size_t kMaxXmlDepth = 64;
+
+/// The first element (in document order) nested deeper than kMaxXmlDepth below `root`, or an
+/// empty node. Iterative: a document of a million nested elements is walked without recursion.
+inline pugi::xml_node element_deeper_than_limit(const pugi::xml_node& root) {
+  std::size_t depth = 0;
+  pugi::xml_node n = root.first_child();
+  if (n) depth = 1;
+  while (n) {
+    if (n.type() == pugi::node_element && depth > kMaxXmlDepth) return n;
+    if (pugi::xml_node c = n.first_child()) {
+      n = c;
+      ++depth;
+      continue;
+    }
+    while (n && !n.next_sibling() && n != root) {
+      n = n.parent();
+      --depth;
+    }
+    if (!n || n == root) break;
+    n = n.next_sibling();
+  }
+  return {};
+}
 
 /// The character data of an element (all its text and CDATA children, comments skipped).
 inline std::string element_text(const pugi::xml_node& node) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "volspline/core/checked_arithmetic.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 
@@ -12,6 +13,22 @@ namespace volspline {
 namespace {
 
 std::string index_text(std::size_t i) { return "[" + std::to_string(i) + "]"; }
+
+// A rational spline does not change when every homogeneous coefficient (w x, w) is multiplied by
+// one factor (numerator and denominator of Lasser's eq. 5 scale together; a point at infinity's
+// direction is its own homogeneous coefficient and scales with them). Weights far from 1 are
+// legal but break what is computed from them: 4.9e-324 (the least subnormal) times a basis
+// function underflows to a zero denominator, and the powers w^4 of rational Jacobians underflow
+// long before. Every spline, whichever reader or algorithm made it, is therefore built with its
+// largest weight in [2^-32, 2^32]; one outside is scaled by the power of two that brings it into
+// [1, 2): exact for every weight scaled up, the geometry unchanged, and weights in the usual range
+// (and so round trips of ordinary files) untouched. Returns that exponent, 0 when none is needed.
+int rational_weight_exponent(double largest) {
+  if (!(largest > 0.0) || (largest >= 0x1p-32 && largest <= 0x1p32)) return 0;
+  int exponent = 0;
+  std::frexp(largest, &exponent);  // largest = m 2^exponent, m in [0.5, 1)
+  return 1 - exponent;
+}
 
 }  // namespace
 
@@ -68,6 +85,24 @@ TensorSpline<D>::TensorSpline(std::array<KnotVector, D> knots, int dimension, st
         throw InvalidInput("expected a finite weight >= 0, got " + format_double(weights_[i]), "weights" + index_text(i));
       }
     }
+    const int exponent = rational_weight_exponent(*std::max_element(weights_.begin(), weights_.end()));
+    if (exponent != 0) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (weights_[i] != 0.0) {
+          weights_[i] = std::ldexp(weights_[i], exponent);
+          continue;
+        }
+        for (std::size_t c = 0; c < k; ++c) {
+          double& x = points_[i * k + c];
+          x = std::ldexp(x, exponent);
+          if (!std::isfinite(x)) {
+            throw InvalidInput("the direction of this point at infinity (weight 0) is too long for the other weights: scaled with "
+                               "them by 2^" + std::to_string(exponent) + " to bring the largest weight near 1, it is no longer finite",
+                               "control_points" + index_text(i) + index_text(c));
+          }
+        }
+      }
+    }
     rational_coefficients_.resize(n * (k + 1));
     for (std::size_t i = 0; i < n; ++i) {
       const double w = weights_[i];
@@ -106,6 +141,17 @@ TensorSpline<D>::TensorSpline(FromHomogeneous, std::array<KnotVector, D> knots, 
   weights_.resize(n);
   double scale = 0.0;
   for (std::size_t i = 0; i < n; ++i) scale = std::max(scale, std::abs(coefficients[i * c_size + k]));
+  if (const int exponent = rational_weight_exponent(scale); exponent != 0) {
+    for (std::size_t i = 0; i < coefficients.size(); ++i) {
+      coefficients[i] = std::ldexp(coefficients[i], exponent);
+      if (!std::isfinite(coefficients[i])) {
+        throw InvalidInput("this coefficient is too large for the weights: scaled with them by 2^" + std::to_string(exponent) +
+                               " to bring the largest weight near 1, it is no longer finite",
+                           "coefficients" + index_text(i));
+      }
+    }
+    scale = std::ldexp(scale, exponent);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     double* h = &coefficients[i * c_size];
     // Algorithms that combine weights with cancellation (knot removal inside degree elevation)
@@ -129,11 +175,14 @@ TensorSpline<D> TensorSpline<D>::from_homogeneous(std::array<KnotVector, D> knot
 template <int D>
 void TensorSpline<D>::set_counts() {
   if (dimension_ < 1) throw InvalidInput("control points need at least one coordinate");
-  total_ = 1;
-  for (int d = 0; d < D; ++d) {
-    counts_[static_cast<std::size_t>(d)] = knots_[static_cast<std::size_t>(d)].num_basis();
-    total_ *= counts_[static_cast<std::size_t>(d)];
-  }
+  for (int d = 0; d < D; ++d) counts_[static_cast<std::size_t>(d)] = knots_[static_cast<std::size_t>(d)].num_basis();
+  // Indices into the homogeneous coefficients are ints: count * (dimension + 1) must fit, or a
+  // wrapped total would make a short array of control points look complete.
+  std::array<long long, D + 1> factors{};
+  for (int d = 0; d < D; ++d) factors[static_cast<std::size_t>(d)] = counts_[static_cast<std::size_t>(d)];
+  factors[D] = static_cast<long long>(dimension_) + 1;
+  checked_product<int>(factors, "control points x (coordinates + 1)", "control_points");
+  total_ = checked_product<int>(counts_, "control points");
 }
 
 template <int D>

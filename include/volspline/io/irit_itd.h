@@ -12,6 +12,7 @@
 // * knot vectors follow as [KV t0 t1 ...] with count + order knots each ([KVP ...], periodic, is
 //   not supported);
 // * control points follow one per [...], the first direction fastest.
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -20,11 +21,16 @@
 
 namespace volspline {
 
+/// [OBJECT ...] lists may nest at most this deep (as JSON nests at most kMaxJsonDepth): the
+/// reader recurses into them, and a file of thousands of nested OBJECTs must be refused rather
+/// than exhaust the stack. IRIT's own files nest a few levels.
+inline constexpr std::size_t kMaxIritObjectDepth = 64;
+
 /// Parses the text of an IRIT data file. Every curve, surface and trivariate becomes one object,
 /// in file order, named after the innermost [OBJECT NAME ...] around it ("NONE" reads as no name).
 /// \throw InvalidInput "SOURCE: line L: what was expected, got what" for a bad token, a wrong count
 /// of knots or control points, an unsupported object ([POLYGON ...], periodic knots), a missing
-/// bracket or an invalid spline.
+/// bracket, OBJECTs nested deeper than kMaxIritObjectDepth or an invalid spline.
 Model parse_irit_itd(std::string_view text, const std::string& source_name);
 
 /// Reads and parses an IRIT data file. \throw IoError, InvalidInput as parse_irit_itd.
