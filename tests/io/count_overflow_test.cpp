@@ -25,19 +25,16 @@
 #include "volspline/mesh/mesh_reader.h"
 #include "volspline/spline/tensor_spline.h"
 
+#include <utility>
+
+#include "support/invalid_input_message.h"
+
 namespace volspline {
 namespace {
 
 template <class F>
 std::string overflow_error_of(F&& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("not InvalidInput: ") + e.what();
-  }
-  return "no error";
+  return test_support::invalid_input_message(std::forward<F>(f));
 }
 
 bool overflow_contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

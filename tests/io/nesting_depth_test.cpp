@@ -19,19 +19,16 @@
 #include "volspline/io/strict_json.h"
 #include "volspline/io/vtk_xml.h"
 
+#include <utility>
+
+#include "support/invalid_input_message.h"
+
 namespace volspline {
 namespace {
 
 template <class F>
 std::string nesting_error_of(F&& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("not InvalidInput: ") + e.what();
-  }
-  return "no error";
+  return test_support::invalid_input_message(std::forward<F>(f));
 }
 
 bool nesting_contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
