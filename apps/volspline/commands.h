@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <optional>
 
 namespace volspline::cli {
 
@@ -33,6 +34,10 @@ void add_blend_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 void add_sweep_envelope_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
+void add_batch_command(CLI::App& app);
+/// `volspline [global options] batch ...` (batch.cpp): replaces this process by the Python module
+/// volspline.batch, or returns the exit code of an error (2); nullopt for any other command.
+std::optional<int> run_batch_command(int argc, char** argv);
 
 class DemoRun;
 /// Writes the boundary-determination examples of `demo` (those it wants) and adds them to its gallery.

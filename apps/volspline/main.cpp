@@ -40,6 +40,8 @@ int check_standard_output(int code, int failed_errno = 0) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // `batch` belongs to the Python module volspline.batch, which parses its own arguments.
+  if (const auto code = volspline::cli::run_batch_command(argc, argv)) return *code;
   CLI::App app{"volspline: free-form trivariate spline solids", "volspline"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("volspline ") + volspline::kVersion);
@@ -63,6 +65,7 @@ int main(int argc, char** argv) {
   volspline::cli::add_split_tetrahedron_command(app);
   volspline::cli::add_fit_command(app);
   volspline::cli::add_demo_command(app);
+  volspline::cli::add_batch_command(app);
   auto& flags = volspline::cli::global_flags();
   app.add_option_function<std::string>(
          "--memory-limit", [](const std::string& text) { volspline::set_memory_limit(volspline::parse_byte_count(text, "--memory-limit")); },
