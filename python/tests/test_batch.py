@@ -10,6 +10,7 @@ import csv
 import json
 import logging
 import os
+from pathlib import Path
 import signal
 import subprocess
 import sys
@@ -241,14 +242,16 @@ def test_operations_with_outputs(client, library, cli_path, tmp_path, operation,
 
 def test_a_crashing_or_hanging_cli_costs_only_its_rows(client, tmp_path):
     fake = tmp_path / "fake-volspline"
-    fake.write_text('#!/bin/sh\ncase "$2" in\n  *crash*) kill -SEGV $$ ;;\n  *hang*) exec sleep 60 ;;\nesac\n'
+    fake.write_text('#!/bin/sh\ncase "$(basename "$2")" in\n  *crash*) kill -SEGV $$ ;;\n  *hang*) exec sleep 60 ;;\nesac\n'
                     'echo \'{"objects": [{"type": "bspline_volume"}]}\'\n')
     fake.chmod(0o755)
     names = ["fine-0.json", "crash.json", "hang.json", "fine-1.json"]
     models = [str(tmp_path / n) for n in names]
+    for m in models:
+        Path(m).write_text("{}\n")  # the fake ignores the content; the batch checks that the file exists
     summary = batch.run_batch("info", models, tmp_path / "out", client=client, cli=str(fake), timeout=2)
     rows = {os.path.basename(r["file"]): r for r in summary.rows}
-    assert rows["fine-0.json"]["status"] == rows["fine-1.json"]["status"] == "ok"
+    assert rows["fine-0.json"]["status"] == rows["fine-1.json"]["status"] == "ok", rows
     assert rows["fine-0.json"]["objects"] == 1
     assert rows["crash.json"]["exit_code"] == -signal.SIGSEGV and "SIGSEGV" in rows["crash.json"]["error"]
     assert "timed out after 2 s" in rows["hang.json"]["error"]
