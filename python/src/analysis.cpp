@@ -19,28 +19,25 @@ JacobianBoundMethod bound_method(const std::string& name) {
   throw InvalidInput("bounds: expected bezier or cone, got '" + name + "'");
 }
 
-py::array_t<int> int_array(const std::vector<int>& values, py::ssize_t columns) {
-  const auto rows = static_cast<py::ssize_t>(values.size()) / columns;
-  py::array_t<int> a(columns == 1 ? std::vector<py::ssize_t>{rows} : std::vector<py::ssize_t>{rows, columns});
-  std::copy(values.begin(), values.end(), a.mutable_data());
-  return a;
-}
-
 }  // namespace
 
 void bind_analysis(py::module_& m) {
   m.def(
       "check_jacobian",
-      [](const BSplineVolume& volume, const std::string& bounds, double tolerance, std::int64_t max_cells) {
+      [](const BSplineVolume& volume, const std::string& bounds, double tolerance, std::int64_t max_cells,
+         const py::object& progress) {
         JacobianValidityOptions options;
         options.bounds = bound_method(bounds);
         options.tolerance = tolerance;
         options.max_cells = max_cells;
+        PythonProgress listener(progress);
+        options.progress = listener.get();
         JacobianValidity v;
         {
           py::gil_scoped_release release;
           v = check_jacobian(volume, options);
         }
+        listener.rethrow();
         py::dict out;
         out["verdict"] = verdict_name(v.verdict);
         out["orientation"] = v.orientation;
@@ -54,58 +51,42 @@ void bind_analysis(py::module_& m) {
         return out;
       },
       py::arg("volume"), py::arg("bounds") = "bezier", py::arg("tolerance") = 1e-12, py::arg("max_cells") = 200000,
+      py::arg("progress") = py::none(),
       "Is J != 0 on the whole domain? A dict: verdict ('valid', 'invalid', 'undecided', certified), orientation "
       "(+1/-1 when valid), certified lower/upper bounds of J, a witness (u, v, w) for 'invalid', cells, seconds "
-      "(volspline jacobian).");
+      "(volspline jacobian). progress: None or a callable progress(phase, fraction).");
   m.def(
       "boundary",
       [](const BSplineVolume& volume, double tolerance, std::int64_t max_cells, int face_resolution, bool snap,
-         const std::string& bounds) {
+         const std::string& bounds, const py::object& progress) {
         BoundaryOptions options;
         options.tolerance = tolerance;
         options.max_cells = max_cells;
         options.face_resolution = face_resolution;
         options.snap = snap;
         options.bounds = bound_method(bounds);
+        PythonProgress listener(progress);
+        options.progress = listener.get();
         SolidBoundary b;
         {
           py::gil_scoped_release release;
           b = solid_boundary(volume, options);
         }
-        const auto n = static_cast<py::ssize_t>(b.mesh.num_vertices());
-        std::vector<double> positions, parameters;
-        positions.reserve(static_cast<std::size_t>(3 * n));
-        parameters.reserve(static_cast<std::size_t>(3 * n));
-        for (std::size_t i = 0; i < b.mesh.num_vertices(); ++i)
-          for (int c = 0; c < 3; ++c) {
-            positions.push_back(b.mesh.positions[i][c]);
-            parameters.push_back(b.mesh.parameters[i][c]);
-          }
-        std::vector<int> triangles;
-        triangles.reserve(3 * b.mesh.num_triangles());
-        for (const auto& t : b.mesh.triangles) triangles.insert(triangles.end(), t.begin(), t.end());
-        py::dict names;
-        for (int part : b.mesh.parts)
-          if (!names.contains(py::int_(part))) names[py::int_(part)] = part_name(part);
+        listener.rethrow();
         py::dict stats;
         stats["cells_examined"] = b.stats.cells_examined;
         stats["cells_kept"] = b.stats.cells_kept;
         stats["max_domain_distance"] = b.stats.max_domain_distance;
         stats["seconds"] = b.stats.seconds_total;
-        py::dict out;
-        out["vertices"] = array_over(std::move(positions), {n, 3}, {3, 1});
-        out["parameters"] = array_over(std::move(parameters), {n, 3}, {3, 1});
-        out["triangles"] = int_array(triangles, 3);
-        out["parts"] = int_array(b.mesh.parts, 1);
-        out["part_names"] = names;
+        py::dict out = mesh_dict(b.mesh);
         out["stats"] = stats;
         return out;
       },
       py::arg("volume"), py::arg("tolerance") = 1e-3, py::arg("max_cells") = 200000, py::arg("face_resolution") = 24,
-      py::arg("snap") = false, py::arg("bounds") = "bezier",
+      py::arg("snap") = false, py::arg("bounds") = "bezier", py::arg("progress") = py::none(),
       "The boundary of the solid (Joy-Duchaineau): the six faces and the surface J = 0, as a dict of vertices "
       "(V, 3), parameters (u, v, w) (V, 3), triangles (F, 3), parts (F,), part_names and stats (volspline "
-      "boundary).");
+      "boundary). progress: None or a callable progress(phase, fraction).");
 }
 
 }  // namespace volspline::python

@@ -4,7 +4,13 @@
 #include <pybind11/pybind11.h>
 
 #include <memory>
+#include <optional>
 #include <vector>
+
+#include "volspline/core/progress.h"
+#include "volspline/io/model_file.h"
+#include "volspline/mesh/triangle_mesh.h"
+#include "volspline/render/image.h"
 
 namespace volspline::python {
 
@@ -20,6 +26,51 @@ inline py::array_t<double> array_over(std::vector<double>&& data, std::vector<py
   return py::array_t<double>(shape, strides, owner->data(), capsule);
 }
 
+/// A triangle mesh as the dict every mesh-returning function gives: vertices (V, 3), parameters
+/// (V, 3) (each vertex's (u, v, w) where the producer knows them), triangles (F, 3) int32,
+/// parts (F,) int32 and part_names (part number -> name, mesh/parts.h).
+py::dict mesh_dict(const TriangleMesh& mesh);
+
+/// The mesh of such a dict: vertices and triangles required, parameters and parts optional
+/// (zeros). \throw InvalidInput naming the key for a missing key, a wrong shape or an index out of
+/// range.
+TriangleMesh mesh_from(const py::handle& mesh);
+
+/// A library Progress that hands every report to a Python callable `callback(phase, fraction)`
+/// (None: no Progress at all). The library reports from worker threads with the GIL released;
+/// each call takes the GIL. An exception the callback raises is kept, later reports are dropped,
+/// and rethrow() raises it once the library call has returned (the operation itself runs to its
+/// end: the library has no cancellation point).
+class PythonProgress {
+ public:
+  explicit PythonProgress(const py::object& callback);
+  PythonProgress(const PythonProgress&) = delete;
+  PythonProgress& operator=(const PythonProgress&) = delete;
+  /// The Progress to give the library, or null without a callback.
+  Progress* get() { return progress_.get(); }
+  /// Raises what the callback raised, if anything. Call with the GIL held.
+  void rethrow();
+
+ private:
+  py::object callback_;
+  std::unique_ptr<Progress> progress_;
+  std::unique_ptr<py::error_already_set> error_;
+};
+
+/// An Image as an array of shape (height, width, 4), uint8, rows top to bottom.
+py::array_t<std::uint8_t> image_array(const Image& image);
+
+/// The model object of a Curve .. Hypervolume, SweptSolid, SimplexSplineVolume or ModelObject.
+/// \throw InvalidInput for anything else.
+ModelObject model_object_from(const py::handle& item);
+/// A model from a path (read in any format), one object, or a list or tuple of objects.
+Model model_from(const py::handle& model);
+
+void bind_meshes(py::module_& m);
+void bind_pictures(py::module_& m);
+void bind_blends(py::module_& m);
+void bind_swept_solids(py::module_& m);
+void bind_simplex_splines(py::module_& m);
 void bind_tensor_splines(py::module_& m);
 void bind_constructions(py::module_& m);
 void bind_models(py::module_& m);

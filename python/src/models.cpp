@@ -11,42 +11,53 @@
 #include "volspline/core/error.h"
 #include "volspline/io/model_file.h"
 #include "volspline/io/model_formats.h"
+#include "volspline/io/vtk_xml.h"
 
 namespace volspline::python {
 namespace {
 
-// The tensor-product spline of an object as its Python class; None for a swept solid or a
-// simplex spline volume, which the module does not bind yet (docs/python.md).
+// The spline of an object as its Python class: Curve .. Hypervolume, SweptSolid or
+// SimplexSplineVolume.
 py::object spline_of(const ModelObject& object) {
-  return std::visit(
-      [](const auto& s) -> py::object {
-        using T = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<T, SweptSolid> || std::is_same_v<T, DmsSplineVolume>)
-          return py::none();
-        else
-          return py::cast(s);
-      },
-      object.spline);
+  return std::visit([](const auto& s) -> py::object { return py::cast(s); }, object.spline);
 }
 
 ModelObject object_of(SplineObject spline) { return ModelObject{std::string(), false, std::move(spline), nullptr, {}}; }
 
-ModelObject object_from(const py::handle& item) {
+}  // namespace
+
+ModelObject model_object_from(const py::handle& item) {
   if (py::isinstance<ModelObject>(item)) return item.cast<ModelObject>();
+  if (py::isinstance<SweptSolid>(item)) return object_of(item.cast<SweptSolid>());
+  if (py::isinstance<DmsSplineVolume>(item)) return object_of(item.cast<DmsSplineVolume>());
   if (py::isinstance<TensorSpline<1>>(item)) return object_of(item.cast<TensorSpline<1>>());
   if (py::isinstance<TensorSpline<2>>(item)) return object_of(item.cast<TensorSpline<2>>());
   if (py::isinstance<TensorSpline<3>>(item)) return object_of(item.cast<TensorSpline<3>>());
   if (py::isinstance<TensorSpline<4>>(item)) return object_of(item.cast<TensorSpline<4>>());
-  throw InvalidInput("objects: expected Curve, Surface, Volume, Hypervolume or ModelObject items, got " +
-                     std::string(py::str(item.get_type().attr("__name__"))));
+  throw InvalidInput("objects: expected Curve, Surface, Volume, Hypervolume, SweptSolid, SimplexSplineVolume or "
+                     "ModelObject items, got " + std::string(py::str(item.get_type().attr("__name__"))));
 }
 
-}  // namespace
+Model model_from(const py::handle& model) {
+  if (py::isinstance<py::str>(model) || py::hasattr(model, "__fspath__")) {
+    const auto path = model.cast<std::filesystem::path>();
+    py::gil_scoped_release release;
+    return read_model_file(path);
+  }
+  Model out;
+  if (py::isinstance<py::list>(model) || py::isinstance<py::tuple>(model)) {
+    for (const py::handle& item : model) out.objects.push_back(model_object_from(item));
+  } else {
+    out.objects.push_back(model_object_from(model));
+  }
+  if (out.objects.empty()) throw InvalidInput("model: expected at least one object");
+  return out;
+}
 
 void bind_models(py::module_& m) {
   py::class_<ModelObject>(m, "ModelObject", "One object of a model file: a name, a spline and named attributes.")
       .def(py::init([](const py::object& spline, const std::string& name, const std::map<std::string, std::vector<double>>& attributes) {
-             ModelObject object = object_from(spline);
+             ModelObject object = model_object_from(spline);
              object.name = name;
              object.attributes = attributes;
              validate_attributes(object);
@@ -57,8 +68,8 @@ void bind_models(py::module_& m) {
       .def_readonly("name", &ModelObject::name)
       .def_property_readonly("type", [](const ModelObject& o) { return object_type_name(o); },
                              "The model-format type, e.g. bspline_volume, swept_solid, simplex_spline_volume.")
-      .def_property_readonly("spline", &spline_of, "The spline (Curve, Surface, Volume, Hypervolume), or None for a "
-                                                   "swept solid or a simplex spline volume.")
+      .def_property_readonly("spline", &spline_of, "The spline: Curve, Surface, Volume, Hypervolume, SweptSolid or "
+                                                   "SimplexSplineVolume.")
       .def_property_readonly("attributes", [](const ModelObject& o) { return o.attributes; })
       .def("__repr__", [](const ModelObject& o) {
         return "<volspline.ModelObject " + object_type_name(o) + (o.name.empty() ? "" : " '" + o.name + "'") + ">";
@@ -82,13 +93,23 @@ void bind_models(py::module_& m) {
       "write",
       [](const std::filesystem::path& path, const py::iterable& objects, const std::string& format) {
         Model model;
-        for (const py::handle& item : objects) model.objects.push_back(object_from(item));
+        for (const py::handle& item : objects) model.objects.push_back(model_object_from(item));
         py::gil_scoped_release release;
         write_model_file(model, path, format);
       },
       py::arg("path"), py::arg("objects"), py::arg("format") = "",
       "Writes splines or ModelObjects to a model file (format by extension unless given), atomically: a failed "
       "write leaves no file behind.");
+  m.def(
+      "vtu_text",
+      [](const py::object& model) {
+        const Model objects = model_from(model);
+        py::gil_scoped_release release;
+        return vtu_text(objects);
+      },
+      py::arg("model"),
+      "The VTK XML unstructured grid (.vtu) text of a model, as `volspline convert -o OUT.vtu` writes it: rational "
+      "Bezier cells for tensor-product volumes, Lagrange tetrahedra for simplex spline volumes (docs/formats.md).");
 }
 
 }  // namespace volspline::python

@@ -42,8 +42,14 @@ PYBIND11_MODULE(_volspline, m) {
     }
   });
 
+  // Classes first, so that the signatures in later docstrings name them.
   volspline::python::bind_tensor_splines(m);
+  volspline::python::bind_swept_solids(m);
+  volspline::python::bind_simplex_splines(m);
+  volspline::python::bind_meshes(m);
   volspline::python::bind_constructions(m);
   volspline::python::bind_models(m);
   volspline::python::bind_analysis(m);
+  volspline::python::bind_pictures(m);
+  volspline::python::bind_blends(m);
 }
