@@ -179,3 +179,18 @@ def test_long_calls_release_the_gil():
     finally:
         sys.setswitchinterval(interval)
     assert during > 1000
+
+
+def test_the_example_tour_runs(tmp_path):
+    import os
+    import pathlib
+    import subprocess
+
+    source = pathlib.Path(os.environ.get("VOLSPLINE_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+    result = subprocess.run([sys.executable, str(source / "examples" / "python" / "tour.py"), str(tmp_path)],
+                            capture_output=True, text=True, env=dict(os.environ))
+    assert result.returncode == 0, result.stderr
+    assert "envelope: closed True volume 8.5 exact 8.5" in result.stdout
+    for name in ["ball-slices.png", "boundary.png", "envelope.png", "xray.png", "isosurface.png", "ball.json",
+                 "ball.xml", "boundary.ply", "boundary.vtu"]:
+        assert (tmp_path / name).stat().st_size > 0, name
