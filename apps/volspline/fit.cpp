@@ -4,7 +4,9 @@
 // simplex/volume_fitting.h): domain from the data, generated knot clouds, geometry and
 // attributes by least squares, then adaptive refinement (§5.4) down to the error bound E. DATA is a file (io/volume_data.h) or a generated data set:
 // marschner-lobb:N (N³ samples on [−1, 1]³) or two-material:N.
+#include <cmath>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -20,6 +22,7 @@
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 #include "volspline/io/volume_data.h"
+#include "volspline/pipeline/fit_baselines.h"
 #include "volspline/render/image.h"
 #include "volspline/render/xray_image.h"
 #include "volspline/simplex/adaptive_refinement.h"
@@ -36,7 +39,35 @@ struct FitRequest {
   long long max_tetrahedra = 0;
   double seconds = 0;
   std::string knots = "fixed";
+  bool baselines = false;
 };
+
+// The true field of generated data (the names data_of accepts), for --baselines; empty for files.
+std::function<Eigen::VectorXd(const Eigen::Vector3d&)> truth_of(const std::string& name) {
+  if (name.rfind("marschner-lobb:", 0) == 0)
+    return [](const Eigen::Vector3d& x) { return Eigen::VectorXd::Constant(1, marschner_lobb(x)); };
+  if (name.rfind("two-material:", 0) == 0) return [](const Eigen::Vector3d& x) { return Eigen::VectorXd::Constant(1, two_material(x)); };
+  return {};
+}
+
+nlohmann::json baselines_json(const std::vector<MethodError>& errors) {
+  nlohmann::json out = nlohmann::json::array();
+  auto number = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
+  for (const MethodError& e : errors)
+    out.push_back({{"method", e.method},
+                   {"attribute", e.attribute},
+                   {"coefficients", e.coefficients},
+                   {"data_mean_square", e.data_mean_square},
+                   {"data_max_abs", e.data_max_abs},
+                   {"normalised_data_mean_square", e.normalised_data_mean_square},
+                   {"normalised_data_max_abs", e.normalised_data_max_abs},
+                   {"truth_mean_square", number(e.truth_mean_square)},
+                   {"truth_max_abs", number(e.truth_max_abs)},
+                   {"normalised_truth_mean_square", number(e.normalised_truth_mean_square)},
+                   {"normalised_truth_max_abs", number(e.normalised_truth_max_abs)},
+                   {"seconds", e.seconds}});
+  return out;
+}
 
 VolumeData data_of(const std::string& name) {
   for (const std::string kind : {"marschner-lobb:", "two-material:"}) {
@@ -177,7 +208,19 @@ void fit_file(const FitRequest& r) {
     write_png(XrayRenderer(volume, xray).image(), r.png);
     if (progress) progress->end_phase();
   }
-  if (!r.stats.empty()) write_file_atomically(r.stats, statistics_json(statistics, r.data, r.degree, r.error).dump(2) + "\n");
+  std::vector<MethodError> baselines;
+  if (r.baselines) {
+    if (progress) progress->begin_phase("baselines");
+    FitComparisonOptions comparison;
+    comparison.truth = truth_of(r.data);
+    baselines = compare_volume_fits(data, std::get<DmsSplineVolume>(model.objects.front().spline), comparison);
+    if (progress) progress->end_phase();
+  }
+  if (!r.stats.empty()) {
+    nlohmann::json j = statistics_json(statistics, r.data, r.degree, r.error);
+    if (r.baselines) j["baselines"] = baselines_json(baselines);
+    write_file_atomically(r.stats, j.dump(2) + "\n");
+  }
   const VolumeFitErrors& e = statistics.errors;
   std::cout << "wrote " << r.out << ": degree " << r.degree << " simplex spline fitted to " << e.fitted_points << " of " << e.data_points
             << " points (" << e.outside_points << " outside the domain), " << statistics.domain_tetrahedra << " tetrahedra, "
@@ -200,6 +243,17 @@ void fit_file(const FitRequest& r) {
     std::cout << "  " << line << "\n";
     // Never silent: a budget that stopped the refinement is also said on stderr.
     if (refinement.stop != RefinementStop::Converged) reporter().warn(line);
+  }
+  if (r.baselines) {
+    std::cout << "  baselines (normalised mean square / max error at the data points"
+              << (truth_of(r.data) ? "; against the true field at random points" : "") << "):\n";
+    for (const MethodError& e : baselines) {
+      std::cout << "    " << e.method << ", " << e.attribute << ", " << e.coefficients << " coefficients: "
+                << format_double(e.normalised_data_mean_square) << " / " << format_double(e.normalised_data_max_abs);
+      if (!std::isnan(e.truth_mean_square))
+        std::cout << "; truth " << format_double(e.normalised_truth_mean_square) << " / " << format_double(e.normalised_truth_max_abs);
+      std::cout << "\n";
+    }
   }
   std::cout << "  time:";
   for (const auto& p : statistics.phases) std::cout << " " << p.name << " " << format_double(p.seconds) << " s;";
@@ -227,6 +281,10 @@ void add_fit_command(CLI::App& app) {
                   "fixed (default) or optimise: move the sub-knots of vertices with a large 1-ring error (Hua-He-Qin 5.3, Levenberg-Marquardt)");
   cmd->add_option("--png", r->png, "also write an X-ray picture of the first fitted attribute (.png)");
   cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
+  cmd->add_flag("--baselines", r->baselines,
+                "also fit what a user would pick instead and compare: a tensor-product B-spline least-squares fit with as many "
+                "coefficients, and trilinear and nearest interpolation for grid data; errors at the data points and, for "
+                "generated data, against the true field");
   cmd->callback([r] { fit_file(*r); });
 }
 

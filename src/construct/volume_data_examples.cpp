@@ -39,10 +39,12 @@ VolumeData sampled_volume_data(const std::vector<Eigen::Vector3d>& points, const
 
 VolumeData marschner_lobb_data(int n) { return sampled_volume_data(grid_points(n, -1, 1), "rho", marschner_lobb); }
 
+double two_material(const Eigen::Vector3d& x, double tilt) {
+  return (x.x() + tilt * x.y() < 0.5 ? 1.0 : 2.0) + 0.1 * (x.y() + x.z());
+}
+
 VolumeData two_material_data(int n, double tilt) {
-  return sampled_volume_data(grid_points(n, 0, 1), "material", [tilt](const Eigen::Vector3d& x) {
-    return (x.x() + tilt * x.y() < 0.5 ? 1.0 : 2.0) + 0.1 * (x.y() + x.z());
-  });
+  return sampled_volume_data(grid_points(n, 0, 1), "material", [tilt](const Eigen::Vector3d& x) { return two_material(x, tilt); });
 }
 
 }  // namespace volspline

@@ -119,5 +119,23 @@ TEST_F(FitCli, RefinementAndKnotOptimisationAreReportedInTheStatistics) {
   }
 }
 
+TEST_F(FitCli, BaselinesAreFittedToTheSameDataAndCompared) {
+  // The linear temperature on an 8^3 grid: every method but nearest reproduces it; the table has
+  // one row per method, and generated data is also measured against its true field.
+  auto r = run("fit " + path("data.csv") + " --attributes temperature --baselines --stats " + path("s.json") + " -o " + path("m.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json s = nlohmann::json::parse(std::ifstream(path("s.json")));
+  const auto& rows = s["baselines"];
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[1]["method"], "tensor-product least squares (degree 2)");
+  for (int m = 0; m < 3; ++m) EXPECT_LT(rows[m]["data_max_abs"].get<double>(), 1e-9) << rows[m]["method"];
+  EXPECT_TRUE(rows[0]["truth_mean_square"].is_null());
+  EXPECT_NE(r.out.find("trilinear interpolation"), std::string::npos);
+  r = run("fit marschner-lobb:7 --degree 1 --baselines --stats " + path("ml.json") + " -o " + path("ml-model.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json ml = nlohmann::json::parse(std::ifstream(path("ml.json")));
+  for (const auto& row : ml["baselines"]) EXPECT_GT(row["truth_mean_square"].get<double>(), 0.0) << row["method"];
+}
+
 }  // namespace
 }  // namespace volspline

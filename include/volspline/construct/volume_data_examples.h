@@ -17,6 +17,10 @@ double marschner_lobb(const Eigen::Vector3d& x);
 /// `rho`. \throw InvalidInput for n < 2.
 VolumeData marschner_lobb_data(int n);
 
+/// The two-material field of two_material_data at x: 1 + 0.1 (y + z) where x + tilt·y < 0.5,
+/// else 2 + 0.1 (y + z).
+double two_material(const Eigen::Vector3d& x, double tilt = 0);
+
 /// A solid of two materials with a sharp jump: the n × n × n grid of [0, 1]³, attribute
 /// `material` = 1 + 0.1 (y + z) where x + tilt·y < 0.5 and 2 + 0.1 (y + z) elsewhere: a jump
 /// of 1 across the plane x + tilt·y = 0.5 on a smooth background.
