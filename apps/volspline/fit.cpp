@@ -40,6 +40,7 @@ struct FitRequest {
   double seconds = 0;
   std::string knots = "fixed";
   bool baselines = false;
+  double fairing = ControlVectorFitOptions{}.fairing;
 };
 
 // The true field of generated data (the names data_of accepts), for --baselines; empty for files.
@@ -180,6 +181,8 @@ void fit_file(const FitRequest& r) {
   if (r.knots != "fixed" && r.knots != "optimise")
     throw InvalidInput("expected --knots fixed or optimise, got '" + r.knots + "'", "--knots");
   options.knots.enabled = r.knots == "optimise";
+  if (!(r.fairing >= 0) || !std::isfinite(r.fairing)) throw InvalidInput("expected a fairing weight >= 0, got " + format_double(r.fairing), "--fairing");
+  options.fit.fairing = r.fairing;
   options.refinement.error = r.error;
   options.refinement.max_tetrahedra = static_cast<std::size_t>(r.max_tetrahedra);
   options.refinement.seconds = r.seconds;
@@ -281,6 +284,9 @@ void add_fit_command(CLI::App& app) {
                   "fixed (default) or optimise: move the sub-knots of vertices with a large 1-ring error (Hua-He-Qin 5.3, Levenberg-Marquardt)");
   cmd->add_option("--png", r->png, "also write an X-ray picture of the first fitted attribute (.png)");
   cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
+  cmd->add_option("--fairing", r->fairing,
+                  "weight of the fairing term (finite differences of order n+1, zero on polynomials of degree <= n) against "
+                  "the data term (default 0: none; 0.1 damps ringing next to the boundary, docs/fitting.md)");
   cmd->add_flag("--baselines", r->baselines,
                 "also fit what a user would pick instead and compare: a tensor-product B-spline least-squares fit with as many "
                 "coefficients, and trilinear and nearest interpolation for grid data; errors at the data points and, for "

@@ -325,18 +325,19 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
   m.def(
       "fit",
       [](const py::object& data, int degree, const std::vector<std::string>& attributes, int primary_knots, const std::string& knots,
-         double error, long long max_tetrahedra, const py::object& progress) {
+         double error, long long max_tetrahedra, double fairing, const py::object& progress) {
         VolumeData samples = select_attributes(volume_data_from(data), attributes);
         if (samples.attribute_names.empty()) throw InvalidInput("data: no attributes to fit (only x, y, z)");
         if (knots != "fixed" && knots != "optimise") throw InvalidInput("knots: expected fixed or optimise, got '" + knots + "'");
-        if (primary_knots < 0 || !(error >= 0) || max_tetrahedra < 0)
-          throw InvalidInput("primary_knots, error and max_tetrahedra: expected numbers >= 0");
+        if (primary_knots < 0 || !(error >= 0) || max_tetrahedra < 0 || !(fairing >= 0) || !std::isfinite(fairing))
+          throw InvalidInput("primary_knots, error, max_tetrahedra and fairing: expected finite numbers >= 0");
         VolumeFitOptions options;
         options.degree = degree;
         options.domain.primary_knots = primary_knots;
         options.knots.enabled = knots == "optimise";
         options.refinement.error = error;
         options.refinement.max_tetrahedra = static_cast<std::size_t>(max_tetrahedra);
+        options.fit.fairing = fairing;
         PythonProgress listener(progress);
         Progress* reports = listener.get();
         VolumeFit result = [&] {
@@ -353,12 +354,13 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
       },
       py::arg("data"), py::arg("degree") = 2, py::kw_only(), py::arg("attributes") = std::vector<std::string>{},
       py::arg("primary_knots") = 0, py::arg("knots") = "fixed", py::arg("error") = 0.0, py::arg("max_tetrahedra") = 0,
-      py::arg("progress") = py::none(),
+      py::arg("fairing") = ControlVectorFitOptions{}.fairing, py::arg("progress") = py::none(),
       R"(Fits scattered volume data with a DMS simplex spline (Hua-He-Qin §5), as `volspline fit`. data: a
 file (.csv with a header, .ply, .vtu, .vti, .vtk, .nii, .inr), 'marschner-lobb:N' or 'two-material:N',
 or a dict {'points': (N, 3), 'attributes': {name: (N,)}}. attributes: the columns to fit (default
 all). knots: 'fixed' or 'optimise' (§5.3); error > 0 refines adaptively (§5.4) within
-max_tetrahedra. Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
+max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
+(docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
 per attribute, raw and normalised to the data range.)");
 
   m.def(

@@ -242,12 +242,13 @@ def cylinder(radius: float, height: float, inner: float = ..., center: numpy.nda
 def extrude(profile: Surface, vector: numpy.ndarray) -> Volume:
     """Move a profile surface along a vector (Lasser Theorem 1) (make extrude)."""
 
-def fit(data: object, degree: int = ..., *, attributes: List[str] = ..., primary_knots: int = ..., knots: str = ..., error: float = ..., max_tetrahedra: int = ..., progress: object = ...) -> tuple:
+def fit(data: object, degree: int = ..., *, attributes: List[str] = ..., primary_knots: int = ..., knots: str = ..., error: float = ..., max_tetrahedra: int = ..., fairing: float = ..., progress: object = ...) -> tuple:
     """Fits scattered volume data with a DMS simplex spline (Hua-He-Qin §5), as `volspline fit`. data: a
 file (.csv with a header, .ply, .vtu, .vti, .vtk, .nii, .inr), 'marschner-lobb:N' or 'two-material:N',
 or a dict {'points': (N, 3), 'attributes': {name: (N,)}}. attributes: the columns to fit (default
 all). knots: 'fixed' or 'optimise' (§5.3); error > 0 refines adaptively (§5.4) within
-max_tetrahedra. Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
+max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
+(docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
 per attribute, raw and normalised to the data range."""
 
 def half_cylinder_sweep() -> Volume:

@@ -7,7 +7,9 @@
 #include "volume_fitting_assembly.h"
 #include "volume_fitting_solver.h"
 #include "volspline/core/error.h"
+#include "volspline/core/binomial.h"
 #include "volspline/simplex/adaptive_refinement.h"
+#include "volspline/simplex/dms_spline_evaluator.h"
 #include "volspline/simplex/knot_clouds.h"
 #include "volspline/simplex/knot_optimisation.h"
 
@@ -42,6 +44,62 @@ Collocation collocation(const DmsSplineVolume& volume, const VolumeData& data) {
   c.inside.resize(data.size());
   for (std::size_t i = 0; i < data.size(); ++i) c.inside[i] = sums[static_cast<Eigen::Index>(i)] > 0.5;
   return c;
+}
+
+// The fairing rows (docs/fitting.md, "Fairing"): in every domain tetrahedron one forward
+// difference of order n + 1 of the spline, Σ_k (−1)^(n+1−k) C(n+1, k) s(g + k h d), from the
+// centroid g along one axis d (x, y, z in turn over the tetrahedra, −d where +d leaves Ω), with
+// n + 1 steps h spanning half the tetrahedron's shortest edge. A difference of order n + 1 is 0
+// for every polynomial of degree <= n, so the term never pulls away from such a polynomial;
+// stencils that do not fit inside Ω either way are left out.
+Eigen::SparseMatrix<double, Eigen::RowMajor> fairing_rows(const DmsSplineVolume& volume) {
+  const TetrahedralMesh& domain = volume.domain();
+  const int order = volume.degree() + 1;
+  const DmsSplineEvaluator locator(volume);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> weights;
+  for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t) {
+    const auto& v = domain.tetrahedra[t];
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 4; ++i) {
+      g += 0.25 * domain.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])];
+      for (int j = i + 1; j < 4; ++j)
+        shortest = std::min(shortest, (domain.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])] -
+                                       domain.points[static_cast<std::size_t>(v[static_cast<std::size_t>(j)])]).norm());
+    }
+    const double h = 0.5 * shortest / order;
+    for (const double sign : {1.0, -1.0}) {
+      const Eigen::Vector3d step = sign * h * Eigen::Vector3d::Unit(static_cast<Eigen::Index>(t % 3));
+      bool fits = true;
+      for (int k = 1; k <= order && fits; ++k) fits = locator.locate(g + k * step) >= 0;
+      if (!fits) continue;
+      for (int k = 0; k <= order; ++k) {
+        points.push_back(g + k * step);
+        weights.push_back(((order - k) % 2 ? -1.0 : 1.0) * static_cast<double>(binomial_coefficient(order, k)));
+      }
+      break;
+    }
+  }
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> values = parallel_basis_matrix(volume, points);
+  // A stencil counts only if the basis sums to 1 at each of its points (inside Ω as the basis
+  // matrix sees it, not merely within the locator's rounding margin): then its weights, which
+  // sum to 0, annihilate every polynomial of degree <= n exactly.
+  const Eigen::VectorXd sums = values * Eigen::VectorXd::Ones(values.cols());
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::Index stencils = 0;
+  for (Eigen::Index first = 0; first + order < values.rows(); first += order + 1) {
+    bool inside = true;
+    for (int k = 0; k <= order; ++k) inside = inside && std::abs(sums[first + k] - 1) < 1e-9;
+    if (!inside) continue;
+    for (Eigen::Index r = first; r <= first + order; ++r)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(values, r); it; ++it)
+        entries.emplace_back(stencils, it.col(), weights[static_cast<std::size_t>(r)] * it.value());
+    ++stencils;
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> rows(stencils, values.cols());
+  rows.setFromTriplets(entries.begin(), entries.end());
+  return rows;
 }
 
 std::vector<int> attribute_columns(DmsSplineVolume& volume, const VolumeData& data) {
@@ -144,7 +202,38 @@ VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& d
   solver.iterative_tolerance = options.iterative_tolerance;
   solver.inner_tolerance = options.inner_tolerance;
   FittingSolverReport report;
-  const Eigen::MatrixXd solution = solve_fitting_least_squares(c.a, targets, prior, solver, &report);
+  Eigen::MatrixXd solution;
+  if (options.fairing > 0 && volume.degree() >= 1 && width > 3) {
+    // The geometry (the identity, in the space for every valid knot set) is fitted to the data
+    // alone; the attributes to the data rows, then the fairing rows scaled so that the two terms
+    // weigh `fairing` to 1 per row.
+    solution.resize(prior.rows(), width);
+    solution.leftCols<3>() = solve_fitting_least_squares(c.a, targets.leftCols<3>(), prior.leftCols<3>(), solver, &report);
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> d = fairing_rows(volume);
+    const double scale = std::sqrt(options.fairing * static_cast<double>(fitted) / static_cast<double>(std::max<Eigen::Index>(1, d.rows())));
+    Eigen::SparseMatrix<double, Eigen::RowMajor> stacked(c.a.rows() + d.rows(), c.a.cols());
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(static_cast<std::size_t>(c.a.nonZeros() + d.nonZeros()));
+    for (Eigen::Index r = 0; r < c.a.rows(); ++r)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(c.a, r); it; ++it) entries.emplace_back(r, it.col(), it.value());
+    for (Eigen::Index r = 0; r < d.rows(); ++r)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(d, r); it; ++it)
+        entries.emplace_back(c.a.rows() + r, it.col(), scale * it.value());
+    stacked.setFromTriplets(entries.begin(), entries.end());
+    Eigen::MatrixXd stacked_targets = Eigen::MatrixXd::Zero(stacked.rows(), width - 3);
+    stacked_targets.topRows(m) = targets.rightCols(width - 3);
+    // λ stays what it is for the data alone (a fraction of AᵀA's mean diagonal).
+    FittingSolverOptions faired = solver;
+    faired.regularisation *= c.a.squaredNorm() / std::max(stacked.squaredNorm(), 1e-300);
+    FittingSolverReport attributes_report;
+    solution.rightCols(width - 3) = solve_fitting_least_squares(stacked, stacked_targets, prior.rightCols(width - 3), faired, &attributes_report);
+    report.normal_seconds += attributes_report.normal_seconds;
+    report.factor_seconds += attributes_report.factor_seconds;
+    report.solve_seconds += attributes_report.solve_seconds;
+    report.iterations += attributes_report.iterations;
+  } else {
+    solution = solve_fitting_least_squares(c.a, targets, prior, solver, &report);
+  }
   control.leftCols<3>() = solution.leftCols<3>();
   for (std::size_t a = 0; a < columns.size(); ++a) control.col(columns[a]) = solution.col(3 + static_cast<Eigen::Index>(a));
   if (phases) {

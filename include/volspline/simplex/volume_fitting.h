@@ -65,6 +65,13 @@ struct ControlVectorFitOptions {
   /// Each conjugate-gradient solve runs to this fraction of its right-hand side; the iterated
   /// Tikhonov steps refine it (src/simplex/volume_fitting_solver.h).
   double inner_tolerance = 1e-6;
+  /// Weight of the fairing term of the attribute columns relative to the data term (0: none):
+  /// the squared finite differences of order n + 1 of the spline along stencils in every domain
+  /// tetrahedron, which vanish on polynomials of degree <= n (such a polynomial minimises both
+  /// terms), while oscillations between data points (basis functions that few data points see,
+  /// next to the boundary) are damped. The geometry is fitted without it. docs/fitting.md,
+  /// "Fairing".
+  double fairing = 0;
   /// The prior of the attribute columns (and the conjugate gradients' start) is the volume's
   /// current values there instead of the data mean: for refits after a refinement or a knot
   /// move, where the old fit is a good guess.
