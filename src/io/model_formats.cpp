@@ -6,6 +6,7 @@
 
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/io/coordinate_range.h"
 #include "volspline/io/gismo_xml.h"
 #include "volspline/io/irit_itd.h"
 #include "volspline/io/vtk_xml.h"
@@ -63,6 +64,7 @@ Model read_model_file(const std::filesystem::path& path, std::string_view format
 
 void write_model_file(const Model& model, const std::filesystem::path& path, std::string_view format) {
   const ModelFormat& f = format.empty() ? model_format_from_path(path) : model_format_named(format);
+  check_coordinate_range(model);  // what no reader would accept is not written
   write_file_atomically(path, f.text(model));
 }
 

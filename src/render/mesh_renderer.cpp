@@ -580,13 +580,8 @@ std::pair<double, double> scalar_range(const TriangleMesh& mesh, const RenderOpt
     if (std::isnan(lo)) lo = std::isnan(hi) ? data_lo : std::min(data_lo, hi);
     if (std::isnan(hi)) hi = std::max(data_hi, lo);
   }
-  if (!(hi > lo)) {
-    // A constant field: centre it so it shows the middle colour and the bar still reads.
-    const double pad = std::max(1e-12, 1e-6 * std::abs(lo));
-    lo -= pad;
-    hi += pad;
-  }
-  return {lo, hi};
+  // A constant field: centred, so it shows the middle colour and the bar still reads.
+  return widened_range(lo, hi);
 }
 
 Image render_mesh(const TriangleMesh& mesh, const RenderOptions& options) {
