@@ -619,8 +619,23 @@ Image render_mesh(const TriangleMesh& mesh, const RenderOptions& options) {
     lo = lo.cwiseMin(mesh.positions[v]);
     hi = hi.cwiseMax(mesh.positions[v]);
   }
-  const double extent = mesh.triangles.empty() ? 0.0 : (hi - lo).norm();
-  if (!(extent > 0)) return background_image(options);  // nothing with an area to see
+  // Halves first: the box of coordinates near ±1.8e308 has no finite edge.
+  const double half_extent = mesh.triangles.empty() ? 0.0 : (0.5 * hi - 0.5 * lo).maxCoeff();
+  if (!(half_extent > 0)) return background_image(options);  // nothing with an area to see
+  // Embree works in single precision (largest 3.4e38, least normal 1.2e-38), and products of
+  // coordinates must stay in range too: a mesh much larger or smaller than 1 (models hold sizes
+  // from 2^-200 to 2^200, docs/model-format.md) is drawn from a copy moved to the origin and
+  // scaled by an exact power of two to a size near 1, which is the same picture.
+  int exponent = 0;
+  std::frexp(half_extent, &exponent);
+  if (exponent > 16 || exponent < -16) {
+    const Eigen::Vector3d middle = 0.5 * lo + 0.5 * hi;
+    TriangleMesh scaled = mesh;
+    for (Eigen::Vector3d& p : scaled.positions)
+      for (int c = 0; c < 3; ++c) p[c] = std::ldexp(p[c], -exponent) - std::ldexp(middle[c], -exponent);
+    return render_mesh(scaled, options);
+  }
+  const double extent = (hi - lo).norm();
 
   const Eigen::Vector3d centre = 0.5 * (lo + hi);
   std::vector<Eigen::Vector3d> points;
