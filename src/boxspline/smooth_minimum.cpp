@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -26,7 +27,7 @@ namespace {
 // Up to these many values the integrals are computed exactly, panel by panel (O(m²) for the
 // value, O(m³) with the derivatives), which is faster there; beyond, by the quadrature below
 // (O(m log m); bench/boxspline_bench.cpp, docs/performance.md).
-constexpr std::size_t kExactValueLimit = 64;
+constexpr std::size_t kExactValueLimit = 256;
 constexpr std::size_t kExactDerivativeLimit = 16;
 
 // ∫_{τ_first}^1 Π_{i ≤ r, i ≠ skip} φ_i over the panels r ≥ first, exactly: in y = 1 − τ each
@@ -215,24 +216,84 @@ double add_probability(const PowerSumTree& nodes, int id, std::size_t first, dou
   return add_probability(nodes, g.left, first, tau_j) + add_probability(nodes, g.right, first, tau_j);
 }
 
+// Binomial coefficients C(k, j), k, j ≤ kMoments, for moving power sums to another anchor.
+const std::array<std::array<double, kMoments + 1>, kMoments + 1>& moment_binomials() {
+  static const auto table = [] {
+    std::array<std::array<double, kMoments + 1>, kMoments + 1> c{};
+    for (int k = 0; k <= kMoments; ++k) {
+      c[static_cast<std::size_t>(k)][0] = 1.0;
+      for (int j = 1; j <= k; ++j)
+        c[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)] =
+            c[static_cast<std::size_t>(k - 1)][static_cast<std::size_t>(j - 1)] + (j < k ? c[static_cast<std::size_t>(k - 1)][static_cast<std::size_t>(j)] : 0.0);
+    }
+    return c;
+  }();
+  return table;
+}
+
+// Power sums M_k = Σ weight_i d_i^k of distances d_i ≥ 0 from an anchor, moved to an anchor s
+// farther from every point: (d + s)^k = Σ_j C(k, j) d^j s^{k−j}, all terms positive.
+void move_power_sums(std::array<double, kMoments + 1>& sums, double s) {
+  if (!(s > 0.0)) return;
+  const auto& c = moment_binomials();
+  for (int k = kMoments; k >= 1; --k) {
+    double sum = sums[static_cast<std::size_t>(k)], power = 1.0;
+    for (int j = k - 1; j >= 0; --j) {
+      power *= s;
+      sum += c[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)] * power * sums[static_cast<std::size_t>(j)];
+    }
+    sums[static_cast<std::size_t>(k)] = sum;
+  }
+}
+
 // I by Gauss–Legendre quadrature on pieces of every panel [τ_r, τ_{r+1}] (S is a polynomial
 // there; its kinks are the breakpoints), each piece short enough that λ w ≤ 2, with as many
-// points as points_for asks; log S at the points from the tree of power sums of the values'
-// ages. Stops where S (1 − τ), which bounds the rest because S decreases, falls below 1e-17 of
-// the integral so far. If `derivatives` is not empty, the rule's weighted values ω_n S_n are
-// summed against 1/φ_j with the same kind of tree over the points.
+// points as points_for asks. log S at the points: from the power sums of the born values' ages
+// about the youngest (kept as values are born, O(K²) each) when the born values lie within 1/8
+// of the youngest factor (nearly tied values: always), else from the tree of power sums. Stops
+// where S (1 − τ), which bounds the rest because S decreases, falls below 1e-17 of the integral
+// so far. If `derivatives` is not empty, the rule's weighted values ω_n S_n are summed against
+// 1/φ_j = Σ_k (t_n − τ_j)^k by suffix power sums when every point lies within 1/8 of τ = 0, else
+// by the same kind of tree over the points.
 double quadrature_survival_integral(std::span<const double> tau, std::span<double> derivatives) {
   const GaussRules& rules = gauss_rules();
   const std::size_t m = tau.size();
-  const PowerSumTree values(tau, {}, true);
+  std::optional<PowerSumTree> tree;  // built only when the born values are spread out
+  std::array<double, kMoments + 1> ages{};  // Σ (anchor − τ_i)^k over the born values
+  double anchor = 0.0;
+  std::size_t born = 0;
+  const auto survival_at = [&](double t) {
+    SurvivalAt out;
+    const double b = 1.0 - (t - anchor);  // the youngest born factor; the oldest is b − anchor
+    if (anchor <= kRatio * b) {
+      const double n = ages[0], inverse = 1.0 / b;
+      double log_part = 0.0, rate = n * inverse, power = 1.0;
+      for (int k = 1; k <= kMoments && anchor > 0.0; ++k) {
+        power *= inverse;
+        const double term = ages[static_cast<std::size_t>(k)] * power;
+        log_part += term / k;
+        rate += term * inverse;
+        if (term <= 1e-19) break;
+      }
+      out.log_survival = n * std::log1p(-(t - anchor)) - log_part;
+      out.rate = rate;
+    } else {
+      if (!tree) tree.emplace(tau, std::span<const double>{}, true);
+      add_survival(*tree, 0, born, t, out);
+    }
+    return out;
+  };
   std::vector<double> node_tau, node_weight;
   double integral = 0.0, start = 0.0;
-  std::size_t born = 0;
   while (start < 1.0) {
-    while (born < m && tau[born] <= start) ++born;
+    while (born < m && tau[born] <= start) {
+      move_power_sums(ages, tau[born] - anchor);
+      anchor = std::max(anchor, tau[born]);
+      ages[0] += 1.0;
+      ++born;
+    }
     const double panel_end = born < m ? tau[born] : 1.0;
-    SurvivalAt here;
-    add_survival(values, 0, born, start, here);
+    const SurvivalAt here = survival_at(start);
     const double survival = std::exp(here.log_survival);
     if (survival * (1.0 - start) <= 1e-17 * integral) break;
     const double width = std::min(panel_end - start, 2.0 / here.rate);
@@ -242,9 +303,7 @@ double quadrature_survival_integral(std::span<const double> tau, std::span<doubl
     const double mid = 0.5 * (start + end), half = 0.5 * (end - start);
     for (int i = 0; i < q; ++i) {
       const double t = mid + half * rules.nodes[static_cast<std::size_t>(q)][static_cast<std::size_t>(i)];
-      SurvivalAt at;
-      add_survival(values, 0, born, t, at);
-      const double w = half * rules.weights[static_cast<std::size_t>(q)][static_cast<std::size_t>(i)] * std::exp(at.log_survival);
+      const double w = half * rules.weights[static_cast<std::size_t>(q)][static_cast<std::size_t>(i)] * std::exp(survival_at(t).log_survival);
       integral += w;
       if (!derivatives.empty()) {
         node_tau.push_back(t);
@@ -255,10 +314,33 @@ double quadrature_survival_integral(std::span<const double> tau, std::span<doubl
   }
   if (!derivatives.empty()) {
     std::fill(derivatives.begin(), derivatives.end(), 0.0);
-    const PowerSumTree nodes(node_tau, node_weight, false);
-    for (std::size_t j = 0; j < m; ++j) {
-      const std::size_t first = static_cast<std::size_t>(std::upper_bound(node_tau.begin(), node_tau.end(), tau[j]) - node_tau.begin());
-      if (first < node_tau.size()) derivatives[j] = add_probability(nodes, 0, first, tau[j]);
+    if (!node_tau.empty() && node_tau.back() <= kRatio) {
+      // Values from the youngest to the oldest; the sums hold the points after τ_j.
+      std::array<double, kMoments + 1> after{};
+      double at = tau[m - 1];
+      std::size_t next = node_tau.size();  // points from here on are in the sums
+      for (std::size_t j = m; j-- > 0;) {
+        move_power_sums(after, at - tau[j]);
+        at = tau[j];
+        while (next > 0 && node_tau[next - 1] > at) {
+          --next;
+          const double e = node_tau[next] - at;
+          double term = node_weight[next];
+          for (int k = 0; k <= kMoments; ++k, term *= e) after[static_cast<std::size_t>(k)] += term;
+        }
+        double p = 0.0;
+        for (int k = 0; k <= kMoments; ++k) {
+          p += after[static_cast<std::size_t>(k)];
+          if (after[static_cast<std::size_t>(k)] <= 1e-19 * p) break;
+        }
+        derivatives[j] = p;
+      }
+    } else {
+      const PowerSumTree nodes(node_tau, node_weight, false);
+      for (std::size_t j = 0; j < m; ++j) {
+        const std::size_t first = static_cast<std::size_t>(std::upper_bound(node_tau.begin(), node_tau.end(), tau[j]) - node_tau.begin());
+        if (first < node_tau.size()) derivatives[j] = add_probability(nodes, 0, first, tau[j]);
+      }
     }
   }
   return integral;

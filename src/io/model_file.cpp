@@ -654,7 +654,13 @@ std::string model_to_json(const Model& model) {
 }
 
 void write_model(const Model& model, const std::filesystem::path& path) {
-  write_file_atomically(path, model_to_json(model));
+  std::string text;
+  try {
+    text = model_to_json(model);
+  } catch (const InvalidInput& e) {
+    throw located_in_source(e, path.string());  // "out.json: objects[0]...": which output, which number
+  }
+  write_file_atomically(path, text);
 }
 
 
