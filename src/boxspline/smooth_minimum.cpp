@@ -27,7 +27,7 @@ namespace {
 // Up to these many values the integrals are computed exactly, panel by panel (O(m²) for the
 // value, O(m³) with the derivatives), which is faster there; beyond, by the quadrature below
 // (O(m log m); bench/boxspline_bench.cpp, docs/performance.md).
-constexpr std::size_t kExactValueLimit = 256;
+constexpr std::size_t kExactValueLimit = 128;
 constexpr std::size_t kExactDerivativeLimit = 16;
 
 // ∫_{τ_first}^1 Π_{i ≤ r, i ≠ skip} φ_i over the panels r ≥ first, exactly: in y = 1 − τ each

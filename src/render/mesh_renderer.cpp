@@ -577,7 +577,13 @@ std::pair<double, double> scalar_range(const TriangleMesh& mesh, const RenderOpt
         data_hi = std::max(data_hi, options.vertex_scalars[static_cast<std::size_t>(v)]);
       }
     if (!(data_lo <= data_hi)) data_lo = data_hi = 0;
-    if (std::isnan(lo)) lo = std::isnan(hi) ? data_lo : std::min(data_lo, hi);
+    if (std::isnan(lo) && std::isnan(hi)) {
+      // From the data alone: suggested_coloring's range (a field constant up to rounding is
+      // constant), so `view` of a simplex slice and of a spline solid agree.
+      const ScalarColoring data = suggested_coloring({data_lo, data_hi}, false);
+      return {data.min, data.max};
+    }
+    if (std::isnan(lo)) lo = std::min(data_lo, hi);
     if (std::isnan(hi)) hi = std::max(data_hi, lo);
   }
   // A constant field: centred, so it shows the middle colour and the bar still reads.
