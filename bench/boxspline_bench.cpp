@@ -4,14 +4,19 @@
 // Bernstein–Bézier form (BezierFormField, the previous fast path, 6720 bytes per knot cube) and
 // against assembling from each tetrahedron's own pieces (evaluate_by_own_pieces, the
 // straightforward exact method). And the cylinder intersection of Peters & Wittman Fig. 1c
-// (control method, two subdivisions).
+// (control method, two subdivisions). And the n-ary smooth minimum of n nearly tied values
+// (issue 16): its cost per value for n = 16 .. 65536 against the monomial form it replaced
+// (O(n²), and wrong from n ≈ 60 on, kept here as the baseline only).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <memory>
 #include <random>
+#include <span>
 
 #include "volspline/boxspline/bezier_form.h"
 #include "volspline/boxspline/blend_examples.h"
+#include "volspline/boxspline/implicit_scene.h"
 #include "volspline/boxspline/lattice_field.h"
 #include "volspline/boxspline/zero_set.h"
 
@@ -141,5 +146,64 @@ void BM_Fig1cCylinderIntersection_Exact2Baseline(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(scene_zero_set(scene, {.levels = 2, .method = ZeroSetMethod::Exact, .statistics = false}));
 }
 BENCHMARK(BM_Fig1cCylinderIntersection_Exact2Baseline)->Unit(benchmark::kMillisecond);
+
+// n values within 1e-6 k of each other (a blend of n nearly equal children), k = 0.3.
+std::vector<double> nearly_tied_values(std::int64_t n) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 0.3e-6);
+  std::vector<double> values(static_cast<std::size_t>(n));
+  for (double& v : values) v = 0.25 + u(rng);
+  return values;
+}
+
+void BM_SmoothMinimum_NearlyTied(benchmark::State& state) {
+  const std::vector<double> values = nearly_tied_values(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(smooth_minimum(values, 0.3));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_SmoothMinimum_NearlyTied)->RangeMultiplier(4)->Range(16, 65536);
+
+void BM_SmoothMinimum_NearlyTiedWithDerivatives(benchmark::State& state) {
+  const std::vector<double> values = nearly_tied_values(state.range(0));
+  std::vector<double> derivatives(values.size());
+  for (auto _ : state) benchmark::DoNotOptimize(smooth_minimum(values, 0.3, derivatives));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_SmoothMinimum_NearlyTiedWithDerivatives)->RangeMultiplier(4)->Range(16, 65536);
+
+// The monomial form smooth_minimum used before issue 16: the product of the factors c − τ
+// expanded in powers of τ, panel by panel, O(m²) (its value is not used: it cancels).
+double monomial_smooth_minimum(std::span<const double> values, double k) {
+  const double least = *std::min_element(values.begin(), values.end());
+  std::vector<double> tau;
+  for (double v : values)
+    if ((v - least) / k < 1.0) tau.push_back((v - least) / k);
+  std::sort(tau.begin(), tau.end());
+  std::vector<double> poly{1.0};
+  double sum = 0.0;
+  for (std::size_t r = 0; r < tau.size(); ++r) {
+    std::vector<double> next(poly.size() + 1, 0.0);
+    for (std::size_t d = 0; d < poly.size(); ++d) {
+      next[d] += (1.0 + tau[r]) * poly[d];
+      next[d + 1] -= poly[d];
+    }
+    poly = std::move(next);
+    const double lo = tau[r], hi = r + 1 < tau.size() ? tau[r + 1] : 1.0;
+    double plo = 0.0, phi = 0.0;
+    for (std::size_t d = poly.size(); d-- > 0;) {
+      plo = (plo + poly[d] / static_cast<double>(d + 1)) * lo;
+      phi = (phi + poly[d] / static_cast<double>(d + 1)) * hi;
+    }
+    sum += phi - plo;
+  }
+  return least - 0.5 * k + k * sum;
+}
+
+void BM_SmoothMinimum_NearlyTied_MonomialBaseline(benchmark::State& state) {
+  const std::vector<double> values = nearly_tied_values(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(monomial_smooth_minimum(values, 0.3));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_SmoothMinimum_NearlyTied_MonomialBaseline)->RangeMultiplier(4)->Range(16, 4096);
 
 }  // namespace

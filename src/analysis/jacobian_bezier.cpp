@@ -110,7 +110,9 @@ JacobianBernstein jacobian_bezier_coefficients(const BSplineVolume& cell, double
   std::array<double, 3> inverse_size{};
   for (int d = 0; d < 3; ++d) inverse_size[static_cast<std::size_t>(d)] = deg[static_cast<std::size_t>(d)] / (cell.domain_max(d) - cell.domain_min(d));
 
-  const BernsteinTensor<3> h = homogeneous_polynomial(cell);
+  // J is invariant under translation; relative to the local origin the products below round
+  // relative to the cell's size (a rational D = det[P; P_u; P_v; P_w] holds P itself).
+  const BernsteinTensor<3> h = homogeneous_polynomial(cell.translated_to_local_origin());
   if (!rational) {
     // J = p_u . (p_v x p_w), Joy–Duchaineau §4.
     const std::array<int, 4> xyz{0, 1, 2, 0};
@@ -175,7 +177,10 @@ JacobianBernstein jacobian_bezier_coefficients(const BSplineVolume& cell, double
 }
 
 double extraction_error_bound(const BSplineVolume& volume) {
-  const std::vector<double>& h = volume.homogeneous();
+  // Extraction is done on the spline at its local origin (JacobianSubdivision), so the rounding
+  // is relative to those coefficients.
+  const BSplineVolume local = volume.translated_to_local_origin();
+  const std::vector<double>& h = local.homogeneous();
   double largest = 0;
   for (double c : h) largest = std::max(largest, std::abs(c));
   double insertions = 0;

@@ -39,7 +39,9 @@ JacobianSubdivision::JacobianSubdivision(const BSplineVolume& volume, JacobianBo
   if (method == JacobianBoundMethod::Cone && volume.is_rational()) {
     throw InvalidInput("cone bounds (Joy–Duchaineau §5) apply to polynomial volumes; use Bézier bounds for a rational volume");
   }
-  pieces_ = bezier_pieces(volume);
+  // Extracted at the local origin: Bézier extraction rounds relative to the coefficients, and
+  // the differences that make J must see the model's size, not its distance from 0.
+  pieces_ = bezier_pieces(volume.translated_to_local_origin());
   for (int d = 0; d < 3; ++d) {
     breakpoints_[static_cast<std::size_t>(d)] = volume.knot_vector(d).breakpoints();
     counts_[static_cast<std::size_t>(d)] = static_cast<int>(breakpoints_[static_cast<std::size_t>(d)].size()) - 1;

@@ -451,10 +451,14 @@ void add_totals(const Setup& setup, const std::vector<Region>& regions, const Ma
 
 }  // namespace
 
-MassProperties mass_properties(const BSplineVolume& volume, const MassPropertiesOptions& options) {
-  if (volume.dimension() != 3)
-    throw InvalidInput("mass properties need a volume in R^3, got one in R^" + std::to_string(volume.dimension()));
+MassProperties mass_properties(const BSplineVolume& placed, const MassPropertiesOptions& options) {
+  if (placed.dimension() != 3)
+    throw InvalidInput("mass properties need a volume in R^3, got one in R^" + std::to_string(placed.dimension()));
   if (options.extra_points < 1) throw InvalidInput("mass properties: extra_points must be >= 1");
+  // Volume and inertia are invariant under translation: integrate the solid moved to its local
+  // origin, so that x − x0 and the Jacobian are rounded relative to its size, not to its
+  // distance from 0; only the centroid is moved back.
+  const BSplineVolume volume = placed.translated_to_local_origin();
 
   Setup setup;
   setup.rational = volume.is_rational();
@@ -478,6 +482,7 @@ MassProperties mass_properties(const BSplineVolume& volume, const MassProperties
     }
   }
   add_totals(setup, regions, options, result);
+  result.centroid += Eigen::Map<const Eigen::Vector3d>(placed.local_origin().data());
   return result;
 }
 

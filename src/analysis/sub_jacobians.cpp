@@ -86,7 +86,7 @@ SubJacobiansBernstein sub_jacobian_coefficients(const BSplineHypervolume& cell) 
   BernsteinTensor<4> h;
   h.degrees = cell.degrees();
   h.components = cell.coefficient_size();
-  h.coefficients = cell.homogeneous();
+  h.coefficients = cell.translated_to_local_origin().homogeneous();  // J is translation invariant
 
   const bool rational = cell.is_rational();
   // Homogeneous storage is (wx, wy, wz, w); the determinant identity wants w first.

@@ -67,65 +67,6 @@ Eigen::Matrix3d frame_with_z_axis(const Eigen::Vector3d& axis) {
   return frame;
 }
 
-double smooth_minimum(double a, double b, double k) {
-  const double h = std::max(k - std::abs(a - b), 0.0) / k;
-  return std::min(a, b) - h * h * h * k / 6.0;
-}
-
-double smooth_minimum(std::span<const double> values, double k, std::span<double> derivatives) {
-  const std::size_t n = values.size();
-  const double least = *std::min_element(values.begin(), values.end());
-  // With τ = (t − (least − k/2))/k ∈ [0, 1], P(a_i + u_i > t) = min(1, c_i − τ), c_i = 1 + (a_i − least)/k:
-  // 1 for τ < τ_i = c_i − 1, then the linear factor c_i − τ. Values with τ_i ≥ 1 never take part.
-  //   E[min] = least − k/2 + k ∫_0^1 Π_i P(a_i + u_i > t) dτ.
-  std::vector<std::pair<double, std::size_t>> active;  // (τ_i, i), sorted
-  for (std::size_t i = 0; i < n; ++i) {
-    const double tau = (values[i] - least) / k;
-    if (tau < 1.0) active.emplace_back(tau, i);
-  }
-  std::sort(active.begin(), active.end());
-  // ∫ of Π_{active j ≠ skip} factors over [τ_first, 1]: the product is a polynomial on each piece
-  // between consecutive τ's; coefficients in τ, integrated exactly.
-  const auto integral = [&](std::size_t skip, std::size_t first) {
-    std::vector<double> poly{1.0};
-    double sum = 0.0;
-    for (std::size_t r = 0; r < active.size(); ++r) {
-      if (r != skip) {
-        // poly *= (c − τ)
-        const double c = 1.0 + active[r].first;
-        std::vector<double> next(poly.size() + 1, 0.0);
-        for (std::size_t d = 0; d < poly.size(); ++d) {
-          next[d] += c * poly[d];
-          next[d + 1] -= poly[d];
-        }
-        poly = std::move(next);
-      }
-      if (r < first) continue;
-      const double lo = active[r].first;
-      const double hi = r + 1 < active.size() ? active[r + 1].first : 1.0;
-      if (!(hi > lo)) continue;
-      double plo = 0.0, phi = 0.0;  // antiderivative at lo, hi (Horner)
-      for (std::size_t d = poly.size(); d-- > 0;) {
-        plo = (plo + poly[d] / static_cast<double>(d + 1)) * lo;
-        phi = (phi + poly[d] / static_cast<double>(d + 1)) * hi;
-      }
-      sum += phi - plo;
-    }
-    return sum;
-  };
-  if (!derivatives.empty()) {
-    std::fill(derivatives.begin(), derivatives.end(), 0.0);
-    if (active.size() == 1) {
-      derivatives[active[0].second] = 1.0;
-    } else {
-      // ∂/∂a_j = (1/k) ∫ [a_j + u_j density at t] Π_{i≠j} P(a_i + u_i > t) dt = ∫_{τ_j}^1 Π_{i≠j} dτ.
-      for (std::size_t r = 0; r < active.size(); ++r) derivatives[active[r].second] = integral(r, r);
-    }
-  }
-  if (active.size() == 1) return least;
-  return least - 0.5 * k + k * integral(active.size(), 0);
-}
-
 double scene_value(const SceneNode& node, const Eigen::Vector3d& x, Eigen::Vector3d* gradient) {
   switch (node.operation) {
     case SceneOperation::Primitive:

@@ -32,7 +32,12 @@ std::vector<double> face_samples(const KnotVector& knots, int resolution) {
   return unique;
 }
 
-TriangleMesh tessellate_faces(const BSplineVolume& volume, const FaceTessellationOptions& options) {
+TriangleMesh tessellate_faces(const BSplineVolume& placed, const FaceTessellationOptions& options) {
+  // Tessellated, welded and oriented at the local origin, where positions are as precise as the
+  // solid's size allows (far from 0 they are rounded to ulp(|origin|), which would both split
+  // coincident vertices and spoil the enclosed volume that decides the orientation); moved back
+  // at the end.
+  const BSplineVolume volume = placed.translated_to_local_origin();
   if (volume.dimension() != 3) {
     throw InvalidInput("boundary faces need control points in R^3, got " + std::to_string(volume.dimension()) +
                            " coordinates per point",
@@ -97,6 +102,10 @@ TriangleMesh tessellate_faces(const BSplineVolume& volume, const FaceTessellatio
   // A left-handed parameterisation (J < 0, common in real files) turns every face inside out.
   if (enclosed_volume(mesh) < 0.0)
     for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  const std::vector<double>& origin = placed.local_origin();
+  const Eigen::Vector3d shift(origin[0], origin[1], origin[2]);
+  if (!shift.isZero())
+    for (Eigen::Vector3d& p : mesh.positions) p += shift;
   return mesh;
 }
 

@@ -155,19 +155,25 @@ void slice_one(const BSplineVolume& volume, const SampledVolume& grid, const Pla
 
 }  // namespace
 
-TriangleMesh planar_slices(const BSplineVolume& volume, const std::vector<Plane>& planes, const SliceOptions& options) {
-  check_volume(volume);
+TriangleMesh planar_slices(const BSplineVolume& placed, const std::vector<Plane>& planes, const SliceOptions& options) {
+  check_volume(placed);
   if (options.resolution < 1) throw InvalidInput("the slice resolution must be at least 1");
+  // Sliced at the local origin: signed distances n·x − c of points far from 0 would otherwise be
+  // rounded to ulp(|x|), not to the solid's size; the planes move with the solid, the mesh back.
+  const BSplineVolume volume = placed.translated_to_local_origin();
+  const Eigen::Vector3d shift(placed.local_origin()[0], placed.local_origin()[1], placed.local_origin()[2]);
   std::vector<Plane> unit(planes.size());
   for (std::size_t p = 0; p < planes.size(); ++p) {
     check_plane(planes[p], p);
     const double length = planes[p].normal.norm();
-    unit[p] = {planes[p].normal / length, planes[p].offset / length};
+    unit[p] = {planes[p].normal / length, (planes[p].offset - planes[p].normal.dot(shift)) / length};
   }
   TriangleMesh mesh;
   if (planes.empty()) return mesh;
   const SampledVolume grid(volume, options.resolution);
   for (const Plane& plane : unit) slice_one(volume, grid, plane, mesh);
+  if (!shift.isZero())
+    for (Eigen::Vector3d& p : mesh.positions) p += shift;
   return mesh;
 }
 

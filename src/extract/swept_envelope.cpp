@@ -94,7 +94,7 @@ bool jacobian_keeps_weak_sign(const BSplineVolume& v) {
   const double input_error = extraction_error_bound(v);
   std::vector<JacobianBernstein> pieces;
   double largest = 0;
-  for (const BSplineVolume& piece : bezier_pieces(v)) {
+  for (const BSplineVolume& piece : bezier_pieces(v.translated_to_local_origin())) {
     pieces.push_back(jacobian_bezier_coefficients(piece, input_error));
     for (double c : pieces.back().coefficients.coefficients) largest = std::max(largest, std::abs(c));
   }

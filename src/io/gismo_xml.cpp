@@ -17,6 +17,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/io/coordinate_range.h"
 
 namespace volspline {
 
@@ -489,7 +490,9 @@ void put_multipatch(xml_node root, const json& entry, const std::string& path, c
 
 Model parse_gismo_xml(std::string_view text, const std::string& source_name) {
   try {
-    return read_document(text);
+    Model model = read_document(text);
+    check_coordinate_range(model);
+    return model;
   } catch (const InvalidInput& e) {
     std::string where = source_name;
     if (!where.empty() && !e.where().empty()) where += ": ";

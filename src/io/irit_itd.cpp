@@ -12,6 +12,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/io/coordinate_range.h"
 
 namespace volspline {
 
@@ -380,7 +381,9 @@ void write_spline(std::string& out, const TensorSpline<D>& spline, const std::st
 Model parse_irit_itd(std::string_view text, const std::string& source_name) {
   try {
     const std::size_t last_line = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
-    return Parser(tokenize(text), last_line).model();
+    Model model = Parser(tokenize(text), last_line).model();
+    check_coordinate_range(model);
+    return model;
   } catch (const InvalidInput& e) {
     std::string where = source_name;
     if (!where.empty() && !e.where().empty()) where += ": ";

@@ -15,6 +15,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/io/coordinate_range.h"
 #include "volspline/io/strict_json.h"
 #include "volspline/spline/attribute_spline.h"
 #include "model_json_support.h"
@@ -531,7 +532,9 @@ std::string model_curve_json(const BSplineCurve& curve, const std::string& inden
 
 Model parse_model(std::string_view text, const std::string& source_name) {
   try {
-    return read_document(parse_json_document(text));
+    Model model = read_document(parse_json_document(text));
+    check_coordinate_range(model);
+    return model;
   } catch (const InvalidInput& e) {
     throw located_in_source(e, source_name);
   }
@@ -618,6 +621,7 @@ double evaluate_attribute(const ModelObject& object, const std::string& name, co
 
 std::string model_to_json(const Model& model) {
   if (model.objects.empty()) throw InvalidInput("expected at least one object, got none", "objects");
+  check_coordinate_range(model);  // what no reader would accept is not written
   std::ostringstream out;
   out << "{\n  \"volspline\": " << kModelFormatVersion << ",\n  \"objects\": [\n";
   const std::string indent = "      ";
@@ -650,7 +654,13 @@ std::string model_to_json(const Model& model) {
 }
 
 void write_model(const Model& model, const std::filesystem::path& path) {
-  write_file_atomically(path, model_to_json(model));
+  std::string text;
+  try {
+    text = model_to_json(model);
+  } catch (const InvalidInput& e) {
+    throw located_in_source(e, path.string());  // "out.json: objects[0]...": which output, which number
+  }
+  write_file_atomically(path, text);
 }
 
 

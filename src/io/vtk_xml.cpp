@@ -20,6 +20,7 @@
 #include "volspline/core/resource_limits.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
+#include "volspline/io/coordinate_range.h"
 #include "volspline/spline/attribute_spline.h"
 #include "volspline/spline/bezier_extraction.h"
 #include "xml_support.h"
@@ -519,7 +520,9 @@ Model parse_vtu(std::string_view text, const std::string& source_name) {
                          locator.line_and_column(static_cast<std::size_t>(std::max<std::ptrdiff_t>(deep.offset_debug(), 0))));
     }
     if (!document.document_element()) throw InvalidInput("expected a <VTKFile> element, got none");
-    return VtuReader(text).model(document.document_element());
+    Model model = VtuReader(text).model(document.document_element());
+    check_coordinate_range(model);
+    return model;
   } catch (const InvalidInput& e) {
     std::string where = source_name;
     if (!where.empty() && !e.where().empty()) where += ": ";

@@ -47,7 +47,22 @@ ScalarColoring suggested_coloring(const std::vector<double>& values, bool signed
     const double m = std::max(-*lo, *hi);
     return {Colormap::Diverging, -m, m};
   }
-  return {Colormap::Sequential, *lo, *hi};
+  // A field constant up to rounding (the Jacobian of a trilinear box) is drawn as constant: one
+  // colour, not its rounding noise stretched over the whole map.
+  const bool constant = *hi - *lo <= 1e-12 * std::max(std::abs(*lo), std::abs(*hi));
+  const double middle = 0.5 * *lo + 0.5 * *hi;
+  const auto [from, to] = constant ? widened_range(middle, middle) : widened_range(*lo, *hi);
+  return {Colormap::Sequential, from, to};
+}
+
+std::pair<double, double> widened_range(double lo, double hi) {
+  if (hi > lo) return {lo, hi};
+  const double pad = std::max(1e-12, 1e-6 * std::abs(lo));
+  // Within 1e-6 of the largest double one end would overflow: the range then ends at the value
+  // (which takes the end colour) and keeps its width on the other side.
+  if (!std::isfinite(hi + pad)) return {lo - 2 * pad, hi};
+  if (!std::isfinite(lo - pad)) return {lo, hi + 2 * pad};
+  return {lo - pad, hi + pad};
 }
 
 Eigen::Vector3d colormap_color(Colormap map, double t) {

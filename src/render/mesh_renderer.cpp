@@ -577,16 +577,17 @@ std::pair<double, double> scalar_range(const TriangleMesh& mesh, const RenderOpt
         data_hi = std::max(data_hi, options.vertex_scalars[static_cast<std::size_t>(v)]);
       }
     if (!(data_lo <= data_hi)) data_lo = data_hi = 0;
-    if (std::isnan(lo)) lo = std::isnan(hi) ? data_lo : std::min(data_lo, hi);
+    if (std::isnan(lo) && std::isnan(hi)) {
+      // From the data alone: suggested_coloring's range (a field constant up to rounding is
+      // constant), so `view` of a simplex slice and of a spline solid agree.
+      const ScalarColoring data = suggested_coloring({data_lo, data_hi}, false);
+      return {data.min, data.max};
+    }
+    if (std::isnan(lo)) lo = std::min(data_lo, hi);
     if (std::isnan(hi)) hi = std::max(data_hi, lo);
   }
-  if (!(hi > lo)) {
-    // A constant field: centre it so it shows the middle colour and the bar still reads.
-    const double pad = std::max(1e-12, 1e-6 * std::abs(lo));
-    lo -= pad;
-    hi += pad;
-  }
-  return {lo, hi};
+  // A constant field: centred, so it shows the middle colour and the bar still reads.
+  return widened_range(lo, hi);
 }
 
 Image render_mesh(const TriangleMesh& mesh, const RenderOptions& options) {
@@ -624,8 +625,23 @@ Image render_mesh(const TriangleMesh& mesh, const RenderOptions& options) {
     lo = lo.cwiseMin(mesh.positions[v]);
     hi = hi.cwiseMax(mesh.positions[v]);
   }
-  const double extent = mesh.triangles.empty() ? 0.0 : (hi - lo).norm();
-  if (!(extent > 0)) return background_image(options);  // nothing with an area to see
+  // Halves first: the box of coordinates near ±1.8e308 has no finite edge.
+  const double half_extent = mesh.triangles.empty() ? 0.0 : (0.5 * hi - 0.5 * lo).maxCoeff();
+  if (!(half_extent > 0)) return background_image(options);  // nothing with an area to see
+  // Embree works in single precision (largest 3.4e38, least normal 1.2e-38), and products of
+  // coordinates must stay in range too: a mesh much larger or smaller than 1 (models hold sizes
+  // from 2^-200 to 2^200, docs/model-format.md) is drawn from a copy moved to the origin and
+  // scaled by an exact power of two to a size near 1, which is the same picture.
+  int exponent = 0;
+  std::frexp(half_extent, &exponent);
+  if (exponent > 16 || exponent < -16) {
+    const Eigen::Vector3d middle = 0.5 * lo + 0.5 * hi;
+    TriangleMesh scaled = mesh;
+    for (Eigen::Vector3d& p : scaled.positions)
+      for (int c = 0; c < 3; ++c) p[c] = std::ldexp(p[c], -exponent) - std::ldexp(middle[c], -exponent);
+    return render_mesh(scaled, options);
+  }
+  const double extent = (hi - lo).norm();
 
   const Eigen::Vector3d centre = 0.5 * (lo + hi);
   std::vector<Eigen::Vector3d> points;

@@ -315,7 +315,7 @@ void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double
     if (order <= 1 && n[0] == n[1] && n[1] == n[2]) fixed = fixed_volume_kernel(n[0], C, order);
   }
   if (fixed) {
-    fixed(homogeneous().data() + base, stride[1], stride[2], basis[0], basis[1], basis[2], results);
+    fixed(evaluation_coefficients().data() + base, stride[1], stride[2], basis[0], basis[1], basis[2], results);
   } else {
     // Row offsets of the block in global memory for the first stage (direction D-1): the rows
     // run along direction 0 and are contiguous (n_0 * C numbers).
@@ -340,19 +340,20 @@ void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double
     }
     const int len = D == 1 ? C : n[0] * C;
 
-    LocalEvaluation<D> local{homogeneous().data(), C, n, stride, basis, order, &table, results, buffers};
+    LocalEvaluation<D> local{evaluation_coefficients().data(), C, n, stride, basis, order, &table, results, buffers};
     std::array<int, D> alpha{};
-    local.descend(D - 1, homogeneous().data() + base, stride[D - 1], row_offset, rows, len, 0, alpha, buffers);
+    local.descend(D - 1, evaluation_coefficients().data() + base, stride[D - 1], row_offset, rows, len, 0, alpha, buffers);
   }
 
   const int k = dimension_;
   if (!rational) {
     std::memcpy(out, results, sizeof(double) * n_alpha * static_cast<std::size_t>(k));
-    return;
+  } else {
+    divide_by_weight(
+        table, k, [&](std::size_t a) { return results + a * static_cast<std::size_t>(C); },
+        [&](std::size_t a) { return out + a * static_cast<std::size_t>(k); });
   }
-  divide_by_weight(
-      table, k, [&](std::size_t a) { return results + a * static_cast<std::size_t>(C); },
-      [&](std::size_t a) { return out + a * static_cast<std::size_t>(k); });
+  add_local_origin(out, 1, static_cast<std::size_t>(k));  // the position (multi-index 0) only
 }
 
 template <int D>
@@ -423,7 +424,7 @@ void TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>& sa
   if (rational) homog.resize(n_alpha * num_points * static_cast<std::size_t>(C));
   for (std::size_t a = 0; a < n_alpha; ++a) {
     const auto& alpha = table.alphas[a];
-    const double* in = homogeneous().data();
+    const double* in = evaluation_coefficients().data();
     std::size_t inner = static_cast<std::size_t>(C);
     for (int d = 0; d < D; ++d) {
       const auto dd = static_cast<std::size_t>(d);
@@ -462,13 +463,14 @@ void TensorSpline<D>::evaluate_grid(const std::array<std::vector<double>, D>& sa
       inner *= ns;
     }
   }
-  if (!rational) return;
-
-  for (std::size_t pt = 0; pt < num_points; ++pt) {
-    divide_by_weight(
-        table, k, [&](std::size_t a) { return &homog[(a * num_points + pt) * static_cast<std::size_t>(C)]; },
-        [&](std::size_t a) { return &out[(a * num_points + pt) * static_cast<std::size_t>(k)]; });
+  if (rational) {
+    for (std::size_t pt = 0; pt < num_points; ++pt) {
+      divide_by_weight(
+          table, k, [&](std::size_t a) { return &homog[(a * num_points + pt) * static_cast<std::size_t>(C)]; },
+          [&](std::size_t a) { return &out[(a * num_points + pt) * static_cast<std::size_t>(k)]; });
+    }
   }
+  add_local_origin(out, num_points, static_cast<std::size_t>(k));  // the block of positions (multi-index 0)
 }
 
 #define VOLSPLINE_INSTANTIATE_EVALUATION(D)                                                           \

@@ -113,6 +113,7 @@ TensorSpline<D>::TensorSpline(std::array<KnotVector, D> knots, int dimension, st
     }
     validate_weights();
   }
+  set_local_origin();
 }
 
 template <int D>
@@ -135,6 +136,7 @@ TensorSpline<D>::TensorSpline(FromHomogeneous, std::array<KnotVector, D> knots, 
   }
   if (!rational) {
     points_ = std::move(coefficients);
+    set_local_origin();
     return;
   }
   points_.resize(n * k);
@@ -164,6 +166,57 @@ TensorSpline<D>::TensorSpline(FromHomogeneous, std::array<KnotVector, D> knots, 
   }
   rational_coefficients_ = std::move(coefficients);
   validate_weights();
+  set_local_origin();
+}
+
+template <int D>
+void TensorSpline<D>::set_local_origin() {
+  const std::size_t n = static_cast<std::size_t>(total_);
+  const std::size_t k = static_cast<std::size_t>(dimension_);
+  local_origin_.assign(k, 0.0);
+  local_coefficients_.clear();
+  std::vector<double> lo(k, HUGE_VAL), hi(k, -HUGE_VAL);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (is_rational() && weights_[i] == 0.0) continue;  // a direction, not a point
+    for (std::size_t c = 0; c < k; ++c) {
+      lo[c] = std::min(lo[c], points_[i * k + c]);
+      hi[c] = std::max(hi[c], points_[i * k + c]);
+    }
+  }
+  double extent = 0.0;
+  for (std::size_t c = 0; c < k; ++c)
+    if (lo[c] <= hi[c]) extent = std::max(extent, hi[c] - lo[c]);
+  bool far = false;
+  for (std::size_t c = 0; c < k; ++c) {
+    if (!(lo[c] <= hi[c])) continue;
+    const double centre = 0.5 * lo[c] + 0.5 * hi[c];  // halves first: no overflow near the largest double
+    if (std::abs(centre) > extent) local_origin_[c] = centre, far = true;
+  }
+  if (!far) return;
+  const std::size_t C = static_cast<std::size_t>(coefficient_size());
+  local_coefficients_.resize(n * C);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = is_rational() ? weights_[i] : 1.0;
+    for (std::size_t c = 0; c < k; ++c) {
+      const double x = points_[i * k + c];
+      // A point at infinity's direction is its own homogeneous coefficient: translations leave it.
+      local_coefficients_[i * C + c] = w == 0.0 ? x : w * (x - local_origin_[c]);
+    }
+    if (is_rational()) local_coefficients_[i * C + k] = w;
+  }
+}
+
+template <int D>
+void TensorSpline<D>::add_local_origin(double* positions, std::size_t count, std::size_t stride) const {
+  if (local_coefficients_.empty()) return;
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t c = 0; c < local_origin_.size(); ++c) positions[i * stride + c] += local_origin_[c];
+}
+
+template <int D>
+TensorSpline<D> TensorSpline<D>::translated_to_local_origin() const {
+  if (local_coefficients_.empty()) return *this;
+  return from_homogeneous(knots_, dimension_, is_rational(), local_coefficients_);
 }
 
 template <int D>

@@ -114,6 +114,35 @@ TEST(SolidViewPicture, AnAttributeFieldIsTheFieldAtTheVertices) {
   }
 }
 
+// A field that is constant over what is shown draws one colour, the middle of the map, and the
+// bar spans a small range centred on the value (issue 16): a constant attribute, the Jacobian of
+// a trilinear box, u on a family of u-surfaces of one value, a constant 0 and a huge constant.
+TEST(SolidViewPicture, AConstantFieldDrawsTheMiddleColour) {
+  const BSplineVolume cube = box(Eigen::Vector3d(0.1, 0.3, 0.7));  // J constant up to rounding
+  for (const double constant : {0.0, 7.5, -1e300, 1e-300}) {
+    Model model;
+    ModelObject object{"cube", false, cube, nullptr};
+    object.attributes["c"] = std::vector<double>(static_cast<std::size_t>(cube.num_control_points_total()), constant);
+    model.objects.push_back(object);
+    for (const std::string field : {"c", "jacobian", "u"}) {
+      SolidViewPictureRequest request = small_request();
+      request.source_name = "cube.json";
+      request.color = scalar_field_named(field);
+      if (field == "u") request.view.families = {{0, 1}}, request.view.series.clear();  // one u-surface: u constant
+      const SolidViewPicture picture = solid_view_picture(model, request);
+      ASSERT_GT(picture.mesh.positions.size(), 0u) << field;
+      EXPECT_LT(picture.render.scalar_min, picture.render.scalar_max) << field << " " << constant;
+      const double value = picture.render.vertex_scalars.front();
+      const double middle = 0.5 * picture.render.scalar_min + 0.5 * picture.render.scalar_max;
+      EXPECT_NEAR(middle, value, 1e-6 * (picture.render.scalar_max - picture.render.scalar_min)) << field << " " << constant;
+      for (const Eigen::Vector3d& colour : picture.mesh_fields.vertex_colors)
+        EXPECT_LT((colour - colormap_color(Colormap::Sequential, 0.5)).norm(), 1e-9) << field << " " << constant;
+      EXPECT_GT(shown_pixels(picture.image), picture.image.rgba.size() / 4 / 20) << field;
+      if (field != "c") break;  // the geometry's fields do not depend on the attribute
+    }
+  }
+}
+
 TEST(SolidViewPicture, ReportsItsPhases) {
   std::vector<std::string> phases;
   Progress progress([&](const ProgressEvent& event) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "volspline/render/colormap.h"
 #include "volspline/render/text.h"
 
@@ -35,6 +37,32 @@ TEST(Colormap, SuggestedColoringCentresSignedFieldsOfBothSignsOnZero) {
   const auto unsigned_field = suggested_coloring({-1.0, 2.0}, false);
   EXPECT_EQ(unsigned_field.map, Colormap::Sequential);
   EXPECT_EQ(unsigned_field.min, -1.0);
+}
+
+TEST(Colormap, AConstantFieldGetsARangeCentredOnItsValue) {
+  for (const double c : {0.0, 1.0, -2.5e-7, 1e-300, 4.9e-324, 1e300, -1.7976931348623157e308, 1.7976931348623157e308}) {
+    for (const bool signed_field : {false, true}) {
+      const ScalarColoring coloring = suggested_coloring({c, c, c}, signed_field);
+      EXPECT_EQ(coloring.map, Colormap::Sequential);
+      EXPECT_TRUE(std::isfinite(coloring.min) && std::isfinite(coloring.max)) << c;
+      EXPECT_LT(coloring.min, coloring.max) << c;
+      EXPECT_LE(coloring.min, c) << c;  // (the value is an end of the range within 1e-6 of ±DBL_MAX)
+      EXPECT_GE(coloring.max, c) << c;
+      // c sits in the middle: it draws the middle colour.
+      const double t = (c - coloring.min) / (coloring.max - coloring.min);
+      if (std::abs(c) < 1e300) {
+        EXPECT_NEAR(t, 0.5, 1e-9) << c;
+      }
+    }
+  }
+  // Constant up to rounding is constant; a real spread keeps its ends.
+  const ScalarColoring rounded = suggested_coloring({6.0, 6.0 * (1 + 1e-15), 6.0 * (1 - 2e-16)}, true);
+  EXPECT_NEAR(0.5 * rounded.min + 0.5 * rounded.max, 6.0, 1e-14);
+  EXPECT_GT(rounded.max - rounded.min, 1e-6);
+  const ScalarColoring spread = suggested_coloring({6.0, 6.0 * (1 + 1e-9)}, false);
+  EXPECT_EQ(spread.min, 6.0);
+  EXPECT_EQ(spread.max, 6.0 * (1 + 1e-9));
+  EXPECT_EQ(widened_range(-1.0, 2.0), std::make_pair(-1.0, 2.0));
 }
 
 TEST(Text, DrawsInkOnlyInsideItsBox) {

@@ -80,7 +80,9 @@ double smooth_minimum(double a, double b, double k);
 /// a_i = a_j) smoothed by the box [−k/2, k/2]^n, whose faces are never parallel to a tie
 /// hyperplane. If `derivatives` is not empty (it must then have values.size() entries), it gets
 /// the partial derivatives, the probabilities that each value is the least (they sum to 1).
-/// Cost: O(m³) for m values within k of the least, O(n) otherwise.
+/// Accurate to rounding for any number of values (every quantity is formed from positive
+/// terms); cost O(n) plus O(m log m) for the m values within k of the least (docs/blend.md).
+/// Implemented in smooth_minimum.cpp.
 double smooth_minimum(std::span<const double> values, double k, std::span<double> derivatives = {});
 
 /// The pointwise (CSG) function of a node and optionally its gradient: union = min, intersection

@@ -69,8 +69,9 @@ struct RenderOptions {
 };
 
 /// The range [min, max] ColorMode::Scalar maps onto the colour map: the options' own where set,
-/// else the extreme values at vertices of triangles; a range of zero width is widened so that
-/// the map stays defined. Exposed so that callers (colours in glTF files) agree with pictures.
+/// else the extreme values at vertices of triangles, as suggested_coloring (unsigned) ranges them
+/// (a field constant up to rounding is centred in a small range); a range of zero width is
+/// widened so that the map stays defined. Exposed so that callers (colours in glTF files) agree with pictures.
 std::pair<double, double> scalar_range(const TriangleMesh& mesh, const RenderOptions& options);
 
 /// Renders `mesh` as seen through a perspective camera fitted to it. A mesh with no visible

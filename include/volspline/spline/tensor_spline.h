@@ -67,6 +67,24 @@ class TensorSpline {
   const std::vector<double>& homogeneous() const { return rational_coefficients_.empty() ? points_ : rational_coefficients_; }
   /// Numbers per homogeneous coefficient: dimension, plus one if rational.
   int coefficient_size() const { return dimension_ + (is_rational() ? 1 : 0); }
+
+  /// The local origin O (`dimension()` numbers): coordinate c is the centre of the control
+  /// points' bounding box in c (points at infinity left out) where that centre lies farther from
+  /// 0 than the box's largest edge, and 0 otherwise. Every evaluation (evaluate,
+  /// evaluate_derivatives, evaluate_points, evaluate_grid) contracts the control points relative
+  /// to O and adds O to the position only: a sum of basis functions times coordinates of size
+  /// |x| rounds to about |x| u, so a model of size 1 placed at 1e15 would get derivatives with
+  /// errors near 1 (basis derivatives sum to 0 and cancel the offset); relative to O the error is
+  /// that of the model at 0, and positions are within a few ulp(|O|) (docs/testing.md, "far from
+  /// the origin"). Models that contain or touch the origin's neighbourhood have O = 0 and are
+  /// evaluated exactly as before.
+  const std::vector<double>& local_origin() const { return local_origin_; }
+  /// The spline translated by −local_origin() (control points x − O, weights unchanged): what
+  /// translation-invariant computations on control points (Bézier extraction followed by
+  /// differences, Jacobian coefficients, mass properties) start from, so their roundings are
+  /// relative to the model's size, not to its distance from 0. x − O is exact wherever x and O
+  /// agree to within a factor 2 (Sterbenz).
+  TensorSpline translated_to_local_origin() const;
   /// Linear index of control point `i` (u fastest).
   int linear_index(const Index& i) const;
   double domain_min(int direction) const { return knot_vector(direction).domain_min(); }
@@ -104,6 +122,13 @@ class TensorSpline {
                std::vector<double> coefficients);
   void set_counts();
   void validate_weights() const;
+  void set_local_origin();
+  /// The coefficients the evaluation kernels contract: homogeneous() relative to local_origin().
+  const std::vector<double>& evaluation_coefficients() const {
+    return local_coefficients_.empty() ? homogeneous() : local_coefficients_;
+  }
+  /// Adds the local origin to `count` positions of dimension() numbers, `stride` numbers apart.
+  void add_local_origin(double* positions, std::size_t count, std::size_t stride) const;
 
   std::array<KnotVector, D> knots_;
   int dimension_ = 0;
@@ -112,6 +137,8 @@ class TensorSpline {
   std::vector<double> points_;
   std::vector<double> weights_;
   std::vector<double> rational_coefficients_;
+  std::vector<double> local_origin_;
+  std::vector<double> local_coefficients_;  // empty where the local origin is 0
 };
 
 using BSplineCurve = TensorSpline<1>;
