@@ -82,6 +82,23 @@ void BM_EvaluateMemoisedPerTetrahedron(benchmark::State& state) {
 }
 BENCHMARK(BM_EvaluateMemoisedPerTetrahedron)->Arg(2)->Arg(3);
 
+// The batch API on scattered points (range(2) per call: the first 4,096 are those of
+// BM_EvaluateMemoised), its sort included: shared control vectors (range(1) = 0) and per
+// tetrahedron (1).
+void BM_EvaluateBatch(benchmark::State& state) {
+  const DmsSplineVolume& v = volume(static_cast<int>(state.range(0)), state.range(1) != 0);
+  DmsSplineEvaluator evaluator(v);
+  const auto points = random_points(static_cast<int>(state.range(2)));
+  std::vector<DmsSplinePoint> out;
+  for (auto _ : state) {
+    evaluator.evaluate(points, 1, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["points_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * static_cast<double>(points.size()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_EvaluateBatch)->ArgsProduct({{2, 3}, {0, 1}, {4096, 65536}});
+
 // The same points in the order of the tetrahedra that hold them, as grids, slices and rays visit
 // a domain: each tetrahedron's plan is evaluated while it is in the cache.
 void BM_EvaluateMemoisedCoherent(benchmark::State& state) {

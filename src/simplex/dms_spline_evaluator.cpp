@@ -454,6 +454,15 @@ void DmsSplineEvaluator::add_lower_degree_step(const Eigen::Vector3d& x, int ord
   }
 }
 
+void DmsSplineEvaluator::evaluate(std::span<const Eigen::Vector3d> points, int order, std::vector<DmsSplinePoint>& out) {
+  out.resize(points.size());
+  // (cell, position): points outside the grid (-1) first; a stable order within a cell.
+  std::vector<std::pair<int, std::size_t>> order_of(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) order_of[i] = {index_->reach_grid.cell_of(points[i]), i};
+  std::sort(order_of.begin(), order_of.end());
+  for (const std::pair<int, std::size_t>& entry : order_of) evaluate(points[entry.second], order, out[entry.second]);
+}
+
 DmsSplinePoint DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order) {
   DmsSplinePoint point;
   evaluate(x, order, point);

@@ -48,6 +48,11 @@ class DmsSplineEvaluator {
   /// half-open rule, or from inside Ω on ∂Ω. \throw InvalidInput for another order.
   void evaluate(const Eigen::Vector3d& x, int order, DmsSplinePoint& out);
   DmsSplinePoint evaluate(const Eigen::Vector3d& x, int order = 0);
+  /// evaluate(points[i], order, out[i]) for every point (out is resized; the same results bit for
+  /// bit), done in the order of the index cells that hold the points: scattered points then share
+  /// the candidate tetrahedra's plans while they are in the caches instead of loading them anew
+  /// for every point. The sort costs about 0.1 µs per point. \throw InvalidInput as evaluate.
+  void evaluate(std::span<const Eigen::Vector3d> points, int order, std::vector<DmsSplinePoint>& out);
   /// The tetrahedra whose supports' enclosing planes hold x (a superset of those with a basis
   /// function nonzero at x).
   void support_candidates(const Eigen::Vector3d& x, std::vector<int>& out) const;
