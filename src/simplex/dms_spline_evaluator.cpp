@@ -37,7 +37,8 @@ bool in_closed_tetrahedron(const Eigen::Vector3d& x, const std::array<Eigen::Vec
 struct DmsSplineEvaluator::Index {
   // The compiled recurrence of every tetrahedron's degree-n basis (its basis functions' knot
   // subsets and barycentric frames do not depend on the point): for for_each_basis_function, and
-  // for evaluate where the DMS step below does not apply. Compiled on first use.
+  // for evaluate where the DMS step below does not apply (compiled by the constructor then, else
+  // on first use).
   const std::vector<DmsTetrahedronPlan>& full_plans(const DmsSplineVolume& volume) const {
     std::call_once(full_plans_compiled, [&] {
       std::vector<DmsTetrahedronPlan> compiled = compile_plans(volume, volume.degree());
@@ -224,12 +225,12 @@ void DmsSplineEvaluator::reaching_tetrahedra(const Eigen::Vector3d& x, std::vect
   out.clear();
   for (const int t : index_->reach_grid.query(x)) {
     const Index::ReachPlanes& r = index_->reach[static_cast<std::size_t>(t)];
-    bool inside = true;
+    int outside = 0;  // counted rather than short-circuited: four independent tests, no branches
     for (std::size_t f = 0; f < 4; ++f) {
       const double d = static_cast<double>(r.nx[f]) * x.x() + static_cast<double>(r.ny[f]) * x.y() + static_cast<double>(r.nz[f]) * x.z();
-      inside &= d <= static_cast<double>(r.h[f]);
+      outside += d > static_cast<double>(r.h[f]) ? 1 : 0;
     }
-    if (inside) out.push_back(t);
+    if (outside == 0) out.push_back(t);
   }
 }
 
