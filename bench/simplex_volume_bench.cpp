@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <random>
 #include <Eigen/Dense>
 
@@ -21,14 +22,16 @@
 namespace volspline {
 namespace {
 
-// 8 x 8 x 8 jittered grid points: about 1,900 Delaunay tetrahedra.
-const DmsSplineVolume& volume(int degree) {
-  static std::map<int, DmsSplineVolume> volumes;
-  auto it = volumes.find(degree);
+// 8 x 8 x 8 jittered grid points: about 2,370 Delaunay tetrahedra. Shared control vectors (the
+// paper's class, evaluated by the DMS step from degree n − 1) unless `per_tetrahedron` (all
+// degree-n basis functions).
+const DmsSplineVolume& volume(int degree, bool per_tetrahedron = false) {
+  static std::map<std::pair<int, bool>, DmsSplineVolume> volumes;
+  auto it = volumes.find({degree, per_tetrahedron});
   if (it == volumes.end()) {
-    DmsSplineVolume v = test_support::cube_simplex_volume(degree, DmsControlSharing::Shared, 8);
+    DmsSplineVolume v = test_support::cube_simplex_volume(degree, per_tetrahedron ? DmsControlSharing::PerTetrahedron : DmsControlSharing::Shared, 8);
     for (Eigen::Index r = 0; r < v.control_vectors().rows(); ++r) v.control_vectors()(r, 3) = 1.0 + 0.5 * std::sin(0.37 * static_cast<double>(r));
-    it = volumes.emplace(degree, std::move(v)).first;
+    it = volumes.emplace(std::pair{degree, per_tetrahedron}, std::move(v)).first;
   }
   return it->second;
 }
@@ -62,6 +65,39 @@ void BM_EvaluateMemoised(benchmark::State& state) {
   state.counters["points_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_EvaluateMemoised)->Arg(2)->Arg(3);
+
+// The same spline with its control vectors per tetrahedron (eq. 6 in general): no DMS step, every
+// degree-n basis function of every candidate tetrahedron.
+void BM_EvaluateMemoisedPerTetrahedron(benchmark::State& state) {
+  const DmsSplineVolume& v = volume(static_cast<int>(state.range(0)), true);
+  DmsSplineEvaluator evaluator(v);
+  const auto points = random_points(4096);
+  DmsSplinePoint out;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    evaluator.evaluate(points[i++ % points.size()], 1, out);
+    benchmark::DoNotOptimize(out.value.data());
+  }
+  state.counters["points_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_EvaluateMemoisedPerTetrahedron)->Arg(2)->Arg(3);
+
+// The batch API on scattered points (range(2) per call: the first 4,096 are those of
+// BM_EvaluateMemoised), its sort included: shared control vectors (range(1) = 0) and per
+// tetrahedron (1).
+void BM_EvaluateBatch(benchmark::State& state) {
+  const DmsSplineVolume& v = volume(static_cast<int>(state.range(0)), state.range(1) != 0);
+  DmsSplineEvaluator evaluator(v);
+  const auto points = random_points(static_cast<int>(state.range(2)));
+  std::vector<DmsSplinePoint> out;
+  for (auto _ : state) {
+    evaluator.evaluate(points, 1, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["points_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * static_cast<double>(points.size()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_EvaluateBatch)->ArgsProduct({{2, 3}, {0, 1}, {4096, 65536}});
 
 // The same points in the order of the tetrahedra that hold them, as grids, slices and rays visit
 // a domain: each tetrahedron's plan is evaluated while it is in the cache.

@@ -103,7 +103,9 @@ TetrahedralMesh tetrahedralize_closed_surface(const TriangleMesh& surface, const
   const Criteria criteria(params::edge_size = cell_size, params::facet_angle = 25, params::facet_size = cell_size,
                           params::facet_distance = facet_distance, params::cell_radius_edge_ratio = 3,
                           params::cell_size = cell_size);
-  const Complex complex = CGAL::make_mesh_3<Complex>(domain, criteria, params::no_perturb(), params::exude());
+  // Exudation without a time limit: by default make_mesh_3 stops it after as many seconds as the
+  // refinement took (refine_mesh_3.h), so a busy machine got a different mesh.
+  const Complex complex = CGAL::make_mesh_3<Complex>(domain, criteria, params::no_perturb(), params::exude(params::time_limit = 0));
 
   TetrahedralMesh mesh;
   std::map<Triangulation::Vertex_handle, int> index;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <optional>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -53,9 +52,12 @@ std::vector<std::vector<double>> grid_rows(const TensorSpline<D>& s, const std::
   return rows;
 }
 
-std::vector<double> simplex_row(DmsSplineEvaluator& evaluator, const std::vector<double>& x, bool derivatives) {
+Eigen::Vector3d simplex_point(const std::vector<double>& x) {
   if (x.size() != 3) throw InvalidInput("expected 3 coordinates x, y, z of a point of the domain, got " + std::to_string(x.size()) + " value(s)");
-  const DmsSplinePoint p = evaluator.evaluate(Eigen::Vector3d(x[0], x[1], x[2]), derivatives ? 1 : 0);
+  return {x[0], x[1], x[2]};
+}
+
+std::vector<double> simplex_row(const DmsSplinePoint& p, bool derivatives) {
   const auto k = static_cast<std::size_t>(p.value.size());
   std::vector<double> row(k * (derivatives ? 4 : 1));
   for (std::size_t c = 0; c < k; ++c) row[c] = p.value[static_cast<Eigen::Index>(c)];
@@ -70,7 +72,7 @@ std::vector<double> simplex_row(DmsSplineEvaluator& evaluator, const std::vector
 std::vector<double> evaluate_object_at(const ModelObject& object, const std::vector<double>& t, bool derivatives) {
   if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) {
     DmsSplineEvaluator evaluator(*volume);
-    return simplex_row(evaluator, t, derivatives);
+    return simplex_row(evaluator.evaluate(simplex_point(t), derivatives ? 1 : 0), derivatives);
   }
   return visit_spline(object, "evaluation", "", [&](const auto& s) { return row_at(s, t, derivatives); });
 }
@@ -79,11 +81,25 @@ std::vector<std::vector<double>> evaluate_object_at_each(const ModelObject& obje
                                                          bool derivatives) {
   std::vector<std::vector<double>> rows;
   rows.reserve(points.size());
-  std::optional<DmsSplineEvaluator> evaluator;
-  if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) evaluator.emplace(*volume);
+  if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) {
+    // All points at once: the batch evaluation visits them in the order of the domain's cells.
+    std::vector<Eigen::Vector3d> at(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      try {
+        at[i] = simplex_point(points[i]);
+      } catch (const InvalidInput& e) {
+        throw e.located("points[" + std::to_string(i) + "]");
+      }
+    }
+    DmsSplineEvaluator evaluator(*volume);
+    std::vector<DmsSplinePoint> values;
+    evaluator.evaluate(at, derivatives ? 1 : 0, values);
+    for (const DmsSplinePoint& p : values) rows.push_back(simplex_row(p, derivatives));
+    return rows;
+  }
   for (std::size_t i = 0; i < points.size(); ++i) {
     try {
-      rows.push_back(evaluator ? simplex_row(*evaluator, points[i], derivatives) : evaluate_object_at(object, points[i], derivatives));
+      rows.push_back(evaluate_object_at(object, points[i], derivatives));
     } catch (const InvalidInput& e) {
       throw e.located("points[" + std::to_string(i) + "]");
     }

@@ -49,12 +49,18 @@ std::span<const int> BoxGrid::cell(int i, int j, int k) const {
   return {ids_.data() + offsets_[c], static_cast<std::size_t>(offsets_[c + 1] - offsets_[c])};
 }
 
-std::pair<int, int> BoxGrid::query_positions(const Eigen::Vector3d& x) const {
-  if (ids_.empty() || !bounds_.contains(x)) return {0, 0};
+int BoxGrid::cell_of(const Eigen::Vector3d& x) const {
+  if (ids_.empty() || !bounds_.contains(x)) return -1;
   int index[3];
   for (int a = 0; a < 3; ++a)
     index[a] = std::clamp(static_cast<int>(std::floor((x[a] - bounds_.min()[a]) / cell_size_[a])), 0, cells_[a] - 1);
-  const std::size_t c = static_cast<std::size_t>(index[0] + cells_.x() * (index[1] + cells_.y() * index[2]));
+  return index[0] + cells_.x() * (index[1] + cells_.y() * index[2]);
+}
+
+std::pair<int, int> BoxGrid::query_positions(const Eigen::Vector3d& x) const {
+  const int cell = cell_of(x);
+  if (cell < 0) return {0, 0};
+  const auto c = static_cast<std::size_t>(cell);
   return {offsets_[c], offsets_[c + 1]};
 }
 

@@ -24,6 +24,8 @@ class BoxGrid {
   std::pair<int, int> query_positions(const Eigen::Vector3d& x) const;
   /// The box of every position, cell by cell.
   const std::vector<int>& ids() const { return ids_; }
+  /// The number of the cell that holds x (i + nx (j + ny k)), or -1 outside the bounds.
+  int cell_of(const Eigen::Vector3d& x) const;
   /// The boxes of one cell (i, j, k), each index in range.
   std::span<const int> cell(int i, int j, int k) const;
 

@@ -283,8 +283,8 @@ int DmsRecurrencePlan::add(KnotMask subset, const KnotBinding& binding, Builder&
   return code;
 }
 
-std::array<Eigen::Vector3d, 4> DmsRecurrencePlan::lambda_gradients(int i) const {
-  const PlanFour& f = fours_[interior(i).four];
+std::array<Eigen::Vector3d, 4> DmsRecurrencePlan::four_lambda_gradients(int q) const {
+  const PlanFour& f = fours_[static_cast<std::size_t>(q)];
   std::array<Eigen::Vector3d, 4> g;
   for (int j = 0; j < 4; ++j) {
     const std::size_t k = f.face[j];

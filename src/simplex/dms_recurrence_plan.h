@@ -67,7 +67,21 @@ class DmsRecurrencePlan {
   bool has_frame(int i) const { return i >= leaf_count_ && interior(i).four != kFlatNode; }
   /// ∇λ_j of the four W of node i (has_frame(i)); the μ_j(e_x, e_y, e_z) of eq. 2. The children
   /// interior(i).child follow the same j.
-  std::array<Eigen::Vector3d, 4> lambda_gradients(int i) const;
+  std::array<Eigen::Vector3d, 4> lambda_gradients(int i) const { return four_lambda_gradients(interior(i).four); }
+  /// The four W of node i: a leaf's own knots, an interior node's W; -1 for a flat node.
+  int node_four(int i) const {
+    if (i < leaf_count_) return i;
+    return interior(i).four == kFlatNode ? -1 : interior(i).four;
+  }
+  /// The knots of four q (increasing) and whether they are flat within rounding.
+  const std::array<std::int8_t, 4>& four_knots(int q) const { return fours_[static_cast<std::size_t>(q)].w; }
+  bool four_is_flat(int q) const { return fours_[static_cast<std::size_t>(q)].inverse_det == 0; }
+  /// λ(x) of four q from the face determinants d of x (face_determinants), and ∇λ.
+  std::array<double, 4> four_lambda(int q, const double* d) const { return lambda(q, d); }
+  std::array<Eigen::Vector3d, 4> four_lambda_gradients(int q) const;
+  /// D of every face at x (faces are grouped by their first knot: one x - a per group) into
+  /// d[0..face_count()); values() leaves them in the first face_count() doubles of its work.
+  void face_determinants(const Eigen::Vector3d& x, double* d) const;
   /// The node of V_β and |d(p_i, q_j, r_k, s_l)| of eq. 5, per β.
   int top(int b) const { return tops_[static_cast<std::size_t>(b)]; }
   double scale(int b) const { return scales_[static_cast<std::size_t>(b)]; }
@@ -97,7 +111,7 @@ class DmsRecurrencePlan {
     lines(scales_.data(), scales_.size() * sizeof(double));
   }
   /// M(x | subset) of every node into out[0..size()); `knot` = knot_at(x); work holds
-  /// work_size() doubles.
+  /// work_size() doubles (the face determinants of x are left in its first face_count()).
   void values(const Eigen::Vector3d& x, double* out, int knot, double* work) const;
   /// ∫_a^b M(origin + t·direction | subset) dt of every node into out[0..size()); scratch holds
   /// 2·size() + work_size() doubles.
@@ -109,8 +123,6 @@ class DmsRecurrencePlan {
   // Adds `subset` and the subsets it needs (depth first, so children come first); returns
   // -1 - its position among the leaves for a leaf, its position in interior_ otherwise.
   int add(KnotMask subset, const KnotBinding& binding, Builder& builder);
-  // D of every face at x (faces are grouped by their first knot: one x - a per group).
-  void face_determinants(const Eigen::Vector3d& x, double* d) const;
   // λ of four q from the face determinants.
   std::array<double, 4> lambda(int q, const double* d) const {
     const PlanFour& f = fours_[static_cast<std::size_t>(q)];

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <span>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "box_grid.h"
 #include "volspline/core/error.h"
@@ -32,9 +35,42 @@ bool in_closed_tetrahedron(const Eigen::Vector3d& x, const std::array<Eigen::Vec
 // clouds (so they enclose every support hull(V_β^I)), and the grids over the supports' and the
 // domain tetrahedra's bounding boxes.
 struct DmsSplineEvaluator::Index {
-  // The compiled recurrence of every tetrahedron (its basis functions' knot subsets and
-  // barycentric frames do not depend on the point).
-  std::vector<DmsTetrahedronPlan> plans;
+  // The compiled recurrence of every tetrahedron's degree-n basis (its basis functions' knot
+  // subsets and barycentric frames do not depend on the point): for for_each_basis_function, and
+  // for evaluate where the DMS step below does not apply (compiled by the constructor then, else
+  // on first use).
+  const std::vector<DmsTetrahedronPlan>& full_plans(const DmsSplineVolume& volume) const {
+    std::call_once(full_plans_compiled, [&] {
+      std::vector<DmsTetrahedronPlan> compiled = compile_plans(volume, volume.degree());
+      plans = std::move(compiled);
+    });
+    return plans;
+  }
+  static std::vector<DmsTetrahedronPlan> compile_plans(const DmsSplineVolume& volume, int degree) {
+    const TetrahedralMesh& domain = volume.domain();
+    std::vector<DmsTetrahedronPlan> out(domain.tetrahedra.size());
+    // Isolated: a thread waiting for its share must not pick up an outer task that calls
+    // full_plans again (call_once is not reentrant).
+    tbb::this_task_arena::isolate([&] {
+      tbb::parallel_for(std::size_t{0}, domain.tetrahedra.size(), [&](std::size_t t) {
+        const std::array<int, 4>& tet = domain.tetrahedra[t];
+        out[t] = DmsTetrahedronPlan(degree, {volume.knots().cloud(tet[0]), volume.knots().cloud(tet[1]),
+                                             volume.knots().cloud(tet[2]), volume.knots().cloud(tet[3])});
+      });
+    });
+    return out;
+  }
+  mutable std::once_flag full_plans_compiled;
+  mutable std::vector<DmsTetrahedronPlan> plans;
+  // The DMS evaluation step for shared control vectors (Hua–He–Qin §3.2, Dahmen–Micchelli–Seidel
+  // 1992): s(x) = Σ_I Σ_{|γ| = n−1} N_γ^I(x) ĉ_γ^I(x), ĉ_γ^I(x) = Σ_m λ_m(x | W_γ) c_{γ+e^m}^I with
+  // the degree-(n−1) basis over the first n knots of each cloud and W_γ = (p_i, q_j, r_k, s_l).
+  // It holds for the whole spline, not per basis function (the last knots t_{v,n} drop out only
+  // in the sum over the tetrahedra around a shared control vector), so only for Shared volumes.
+  bool lower_degree_step = false;
+  std::vector<DmsTetrahedronPlan> lower_plans;
+  // Per γ (dms_multi_indices(n − 1) order): the β positions of γ + e^m, m = 0..3.
+  std::vector<std::array<int, 4>> raised;
   std::vector<std::array<Eigen::Vector4d, 4>> support_planes;  // n·x <= h as (n, h)
   // The domain tetrahedra's face planes, lowered by a margin that covers the rounding of n·x, so
   // that n·x < h proves x inside.
@@ -44,12 +80,24 @@ struct DmsSplineEvaluator::Index {
   std::vector<std::array<Eigen::Vector4d, 4>> outer_planes;
   BoxGrid supports;
   BoxGrid tetrahedra;
+  // For evaluate, one query and one cache line per tetrahedron: four planes parallel to the faces
+  // (single precision, shifted outwards past their rounding) that enclose both the knots the
+  // evaluation reads (the first n of each cloud for the DMS step, all n + 1 otherwise) and the
+  // outer planes. The tetrahedra whose reach holds x are the candidates of the evaluation and
+  // include every tetrahedron locate may return, so one grid serves both.
+  struct alignas(64) ReachPlanes {
+    std::array<float, 4> nx, ny, nz, h;
+  };
+  std::vector<ReachPlanes> reach;
+  BoxGrid reach_grid;
 };
 
 struct DmsSplineEvaluator::Scratch {
-  explicit Scratch(int degree) : basis(degree) {}
+  explicit Scratch(int degree) : basis(degree), lower_basis(std::max(degree - 1, 0)) {}
   DmsTetrahedronBasis basis;
+  DmsTetrahedronBasis lower_basis;
   DmsBasisValues values;
+  DmsLastKnotFrames frames;
   std::vector<int> candidates;
 };
 
@@ -58,6 +106,25 @@ DmsSplineEvaluator::DmsSplineEvaluator(const DmsSplineVolume& volume)
   auto index = std::make_shared<Index>();
   const TetrahedralMesh& domain = volume.domain();
   const int per_cloud = volume.degree() + 1;
+  if (volume.sharing() == DmsControlSharing::Shared && volume.degree() >= 1) {
+    index->lower_plans = Index::compile_plans(volume, volume.degree() - 1);
+    index->lower_degree_step = std::all_of(index->lower_plans.begin(), index->lower_plans.end(),
+                                           [](const DmsTetrahedronPlan& p) { return p.has_last_knot_frames(); });
+    for (const std::array<int, 4>& gamma : dms_multi_indices(volume.degree() - 1)) {
+      std::array<int, 4> positions{};
+      for (int m = 0; m < 4; ++m) {
+        std::array<int, 4> beta = gamma;
+        ++beta[static_cast<std::size_t>(m)];
+        positions[static_cast<std::size_t>(m)] = dms_multi_index_position(beta, volume.degree());
+      }
+      index->raised.push_back(positions);
+    }
+    if (!index->lower_degree_step) index->lower_plans.clear();
+  }
+  // The knots of each cloud that evaluate reads (the DMS step never reads t_{v,n}).
+  const int evaluated_per_cloud = index->lower_degree_step ? volume.degree() : per_cloud;
+  index->reach.reserve(domain.tetrahedra.size());
+  std::vector<Eigen::AlignedBox3d> reach_boxes;
   std::vector<Eigen::AlignedBox3d> support_boxes, tetrahedron_boxes;
   support_boxes.reserve(domain.tetrahedra.size());
   tetrahedron_boxes.reserve(domain.tetrahedra.size());
@@ -104,17 +171,40 @@ DmsSplineEvaluator::DmsSplineEvaluator(const DmsSplineVolume& volume)
       outer[static_cast<std::size_t>(f)][3] = outer[static_cast<std::size_t>(f)].head<3>().dot(a) + 1e-10 * tet_box.diagonal().norm();
     }
     index->outer_planes.push_back(outer);
+    Index::ReachPlanes reach{};
+    Eigen::AlignedBox3d reach_box = tet_box;
+    for (int cc = 0; cc < 4; ++cc) {
+      const Eigen::Vector3d* cloud = volume.knots().cloud(tet[static_cast<std::size_t>(cc)]);
+      for (int m = 0; m < evaluated_per_cloud; ++m) reach_box.extend(cloud[m]);
+    }
+    // Rounding the normal to float moves n·x by at most 2^-24 Σ|n_i x_i|; the margin covers that
+    // many times over for every x in the box.
+    const double reach_margin = 1e-6 * (reach_box.max().cwiseAbs().maxCoeff() + reach_box.min().cwiseAbs().maxCoeff() + reach_box.diagonal().norm());
+    for (int f = 0; f < 4; ++f) {
+      const Eigen::Vector3d normal = planes[static_cast<std::size_t>(f)].head<3>();
+      double h = outer[static_cast<std::size_t>(f)][3];
+      for (int cc = 0; cc < 4; ++cc) {
+        const Eigen::Vector3d* cloud = volume.knots().cloud(tet[static_cast<std::size_t>(cc)]);
+        for (int m = 0; m < evaluated_per_cloud; ++m) h = std::max(h, normal.dot(cloud[m]));
+      }
+      h += reach_margin;
+      const auto k = static_cast<std::size_t>(f);
+      reach.nx[k] = static_cast<float>(normal.x());
+      reach.ny[k] = static_cast<float>(normal.y());
+      reach.nz[k] = static_cast<float>(normal.z());
+      reach.h[k] = static_cast<float>(h);
+      if (static_cast<double>(reach.h[k]) < h) reach.h[k] = std::nextafter(reach.h[k], std::numeric_limits<float>::infinity());
+    }
+    index->reach.push_back(reach);
+    const Eigen::Vector3d reach_widening = Eigen::Vector3d::Constant(2 * reach_margin);
+    reach_boxes.emplace_back(reach_box.min() - reach_widening, reach_box.max() + reach_widening);
     support_boxes.push_back(support_box);
     // Widened by locate's margin, so that a point a rounding error outside ∂Ω still finds its tetrahedron.
     const Eigen::Vector3d margin = Eigen::Vector3d::Constant(2e-10 * tet_box.diagonal().norm());
     tetrahedron_boxes.emplace_back(tet_box.min() - margin, tet_box.max() + margin);
   }
-  index->plans.resize(domain.tetrahedra.size());
-  tbb::parallel_for(std::size_t{0}, domain.tetrahedra.size(), [&](std::size_t t) {
-    const std::array<int, 4>& tet = domain.tetrahedra[t];
-    index->plans[t] = DmsTetrahedronPlan(volume.degree(), {volume.knots().cloud(tet[0]), volume.knots().cloud(tet[1]),
-                                                           volume.knots().cloud(tet[2]), volume.knots().cloud(tet[3])});
-  });
+  if (!index->lower_degree_step) index->full_plans(volume);
+  index->reach_grid = BoxGrid(reach_boxes);
   index->supports = BoxGrid(support_boxes);
   index->tetrahedra = BoxGrid(tetrahedron_boxes);
   index_ = std::move(index);
@@ -128,10 +218,27 @@ DmsSplineEvaluator::DmsSplineEvaluator(const DmsSplineEvaluator& other)
 int DmsSplineEvaluator::locate(const Eigen::Vector3d& x) const { return locate(x, nullptr); }
 
 int DmsSplineEvaluator::locate(const Eigen::Vector3d& x, bool* clearly_inside_out) const {
+  return locate_among(x, index_->tetrahedra.query(x), clearly_inside_out);
+}
+
+void DmsSplineEvaluator::reaching_tetrahedra(const Eigen::Vector3d& x, std::vector<int>& out) const {
+  out.clear();
+  for (const int t : index_->reach_grid.query(x)) {
+    const Index::ReachPlanes& r = index_->reach[static_cast<std::size_t>(t)];
+    int outside = 0;  // counted rather than short-circuited: four independent tests, no branches
+    for (std::size_t f = 0; f < 4; ++f) {
+      const double d = static_cast<double>(r.nx[f]) * x.x() + static_cast<double>(r.ny[f]) * x.y() + static_cast<double>(r.nz[f]) * x.z();
+      outside += d > static_cast<double>(r.h[f]) ? 1 : 0;
+    }
+    if (outside == 0) out.push_back(t);
+  }
+}
+
+int DmsSplineEvaluator::locate_among(const Eigen::Vector3d& x, std::span<const int> tetrahedra, bool* clearly_inside_out) const {
   const TetrahedralMesh& domain = volume_->domain();
   // A point inside a tetrahedron by a clear margin lies in no other (the mesh is proper): the
   // floating-point face planes decide it; only points near a face need the exact predicates.
-  for (const int t : index_->tetrahedra.query(x)) {
+  for (const int t : tetrahedra) {
     const std::array<Eigen::Vector4d, 4>& planes = index_->domain_planes[static_cast<std::size_t>(t)];
     bool clearly_inside = true;
     for (const Eigen::Vector4d& p : planes) clearly_inside = clearly_inside && p.head<3>().dot(x) < p[3];
@@ -142,7 +249,7 @@ int DmsSplineEvaluator::locate(const Eigen::Vector3d& x, bool* clearly_inside_ou
   }
   if (clearly_inside_out != nullptr) *clearly_inside_out = false;
   int found = -1;
-  for (const int t : index_->tetrahedra.query(x)) {
+  for (const int t : tetrahedra) {
     if (found >= 0 && t > found) continue;
     std::array<Eigen::Vector3d, 4> corner;
     for (int c = 0; c < 4; ++c)
@@ -151,7 +258,7 @@ int DmsSplineEvaluator::locate(const Eigen::Vector3d& x, bool* clearly_inside_ou
     if (in_closed_tetrahedron(x, corner)) found = t;
   }
   if (found >= 0) return found;
-  for (const int t : index_->tetrahedra.query(x)) {
+  for (const int t : tetrahedra) {
     bool near = true;
     for (const Eigen::Vector4d& p : index_->outer_planes[static_cast<std::size_t>(t)]) near = near && p.head<3>().dot(x) <= p[3];
     if (near && (found < 0 || t < found)) found = t;
@@ -173,27 +280,30 @@ void DmsSplineEvaluator::for_each_basis_function(const Eigen::Vector3d& x, const
   const DmsSplineVolume& v = *volume_;
   const int located = locate(x);
   if (located < 0) return;
-  const TetrahedralMesh& domain = v.domain();
   if (v.degree() == 0) {
-    // The half-open rule picks one tetrahedron inside Ω; a point of ∂Ω whose perturbation
-    // leaves Ω keeps the closed tetrahedron that holds it.
-    int chosen = located;
-    for (const int t : index_->tetrahedra.query(x)) {
-      const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
-      if (in_half_open_tetrahedron(x, domain.points[static_cast<std::size_t>(tet[0])], domain.points[static_cast<std::size_t>(tet[1])],
-                                   domain.points[static_cast<std::size_t>(tet[2])], domain.points[static_cast<std::size_t>(tet[3])])) {
-        chosen = t;
-        break;
-      }
-    }
-    f(v.control_row(chosen, 0), 1.0);
+    f(v.control_row(degree_zero_tetrahedron(x, located), 0), 1.0);
     return;
   }
+  const std::vector<DmsTetrahedronPlan>& full_plans = index_->full_plans(v);
   support_candidates(x, scratch_->candidates);
   for (const int t : scratch_->candidates) {
-    scratch_->basis.evaluate(x, index_->plans[static_cast<std::size_t>(t)], 0, scratch_->values);
+    scratch_->basis.evaluate(x, full_plans[static_cast<std::size_t>(t)], 0, scratch_->values);
     for (int b = 0; b < v.basis_per_tetrahedron(); ++b) f(v.control_row(t, b), scratch_->values.values[static_cast<std::size_t>(b)]);
   }
+}
+
+int DmsSplineEvaluator::degree_zero_tetrahedron(const Eigen::Vector3d& x, int located) const {
+  // The half-open rule picks one tetrahedron inside Ω; a point of ∂Ω whose perturbation leaves Ω
+  // keeps the closed tetrahedron that holds it.
+  const TetrahedralMesh& domain = volume_->domain();
+  for (const int t : index_->tetrahedra.query(x)) {
+    const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
+    if (in_half_open_tetrahedron(x, domain.points[static_cast<std::size_t>(tet[0])], domain.points[static_cast<std::size_t>(tet[1])],
+                                 domain.points[static_cast<std::size_t>(tet[2])], domain.points[static_cast<std::size_t>(tet[3])])) {
+      return t;
+    }
+  }
+  return located;
 }
 
 bool DmsSplineEvaluator::leaves_domain(const Eigen::Vector3d& x, int located) const {
@@ -214,7 +324,9 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
   out.value.setZero(dim);
   if (order >= 1) out.gradient.setZero(dim, 3);
   bool clearly_inside = false;
-  out.tetrahedron = locate(x, &clearly_inside);
+  // The tetrahedra that reach x, in increasing order: the candidates, and where x lies.
+  reaching_tetrahedra(x, scratch_->candidates);
+  out.tetrahedron = locate_among(x, scratch_->candidates, &clearly_inside);
   out.inside = out.tetrahedron >= 0;
   if (!out.inside) return;
   const Eigen::MatrixXd& control = v.control_vectors();
@@ -238,7 +350,15 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
   for (int pass = 0; pass < (derivative_point == x ? 1 : 2); ++pass) {
     const Eigen::Vector3d& at = pass == 0 ? x : derivative_point;
     const int pass_order = derivative_point == x ? order : (pass == 0 ? 0 : 1);
-    support_candidates(at, scratch_->candidates);
+    if (pass == 1) reaching_tetrahedra(at, scratch_->candidates);
+    if (index_->lower_degree_step && v.degree() == 1) {
+      add_linear_step(at, out.tetrahedron, pass_order, pass == 0, out);
+      continue;
+    }
+    if (index_->lower_degree_step) {
+      add_lower_degree_step(at, pass_order, pass == 0, out);
+      continue;
+    }
     for (const int t : scratch_->candidates) index_->plans[static_cast<std::size_t>(t)].prefetch();
     for (const int t : scratch_->candidates) {
       scratch_->basis.evaluate(at, index_->plans[static_cast<std::size_t>(t)], pass_order, scratch_->values);
@@ -265,6 +385,83 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
       }
     }
   }
+}
+
+void DmsSplineEvaluator::add_linear_step(const Eigen::Vector3d& x, int located, int order, bool with_value, DmsSplinePoint& out) const {
+  // Degree 1: the step lands on the degree-0 basis, the indicator of the tetrahedron the half-open
+  // rule picks, which on ∂Ω (where the lower supports do not reach outside Ω, having no sub-knots)
+  // is the closed tetrahedron that holds x. s is the piecewise linear interpolant of the control
+  // vectors at the vertices of Ω, whatever the sub-knots t_{v,1}.
+  const DmsSplineVolume& v = *volume_;
+  const int t = degree_zero_tetrahedron(x, located);
+  const std::array<int, 4>& tet = v.domain().tetrahedra[static_cast<std::size_t>(t)];
+  const auto corner = [&](int c) -> const Eigen::Vector3d& { return v.domain().points[static_cast<std::size_t>(tet[static_cast<std::size_t>(c)])]; };
+  Eigen::Matrix3d edges;
+  edges << corner(1) - corner(0), corner(2) - corner(0), corner(3) - corner(0);
+  const Eigen::Matrix3d inverse = edges.inverse();  // rows: ∇λ_1..3
+  const Eigen::Vector3d l = inverse * (x - corner(0));
+  const std::array<double, 4> lambda = {1 - l.sum(), l[0], l[1], l[2]};
+  const std::array<Eigen::Vector3d, 4> gradient = {-inverse.colwise().sum().transpose(), inverse.row(0).transpose(),
+                                                   inverse.row(1).transpose(), inverse.row(2).transpose()};
+  for (int m = 0; m < 4; ++m) {
+    std::array<int, 4> beta{};
+    beta[static_cast<std::size_t>(m)] = 1;
+    const auto c = v.control_vectors().row(v.control_row(t, dms_multi_index_position(beta, 1)));
+    if (with_value) out.value += lambda[static_cast<std::size_t>(m)] * c.transpose();
+    if (order >= 1) out.gradient += c.transpose() * gradient[static_cast<std::size_t>(m)].transpose();
+  }
+}
+
+void DmsSplineEvaluator::add_lower_degree_step(const Eigen::Vector3d& x, int order, bool with_value, DmsSplinePoint& out) {
+  const DmsSplineVolume& v = *volume_;
+  const int dim = v.dimension();
+  const double* control_data = v.control_vectors().data();
+  const Eigen::Index stride = v.control_vectors().rows();
+  double* value_out = out.value.data();
+  const std::size_t gammas = index_->raised.size();
+  for (const int t : scratch_->candidates) index_->lower_plans[static_cast<std::size_t>(t)].prefetch();
+  for (const int t : scratch_->candidates) {
+    scratch_->lower_basis.evaluate(x, index_->lower_plans[static_cast<std::size_t>(t)], order, scratch_->values, scratch_->frames);
+    for (std::size_t g = 0; g < gammas; ++g) {
+      const double value = scratch_->values.values[g];
+      const Eigen::Vector3d* gradient = order >= 1 ? &scratch_->values.gradients[g] : nullptr;
+      const bool has_gradient = gradient != nullptr && (gradient->x() != 0 || gradient->y() != 0 || gradient->z() != 0);
+      if (value == 0.0 && !has_gradient) continue;
+      const std::array<double, 4>& lambda = scratch_->frames.lambdas[g];
+      const std::array<int, 4>& raised = index_->raised[g];
+      const double* c[4];
+      for (std::size_t m = 0; m < 4; ++m) c[m] = control_data + v.control_row(t, raised[m]);
+      if (order == 0) {
+        for (int k = 0; k < dim; ++k) {
+          const Eigen::Index at = k * stride;
+          value_out[k] += value * (lambda[0] * c[0][at] + lambda[1] * c[1][at] + lambda[2] * c[2][at] + lambda[3] * c[3][at]);
+        }
+        continue;
+      }
+      // ∇(N ĉ) = ĉ ∇N + Σ_m c_m N ∇λ_m.
+      const std::array<Eigen::Vector3d, 4>& dl = scratch_->frames.gradients[g];
+      const Eigen::Vector3d w0 = value * dl[0], w1 = value * dl[1], w2 = value * dl[2], w3 = value * dl[3];
+      for (int k = 0; k < dim; ++k) {
+        const Eigen::Index at = k * stride;
+        const double c0 = c[0][at], c1 = c[1][at], c2 = c[2][at], c3 = c[3][at];
+        const double lifted = lambda[0] * c0 + lambda[1] * c1 + lambda[2] * c2 + lambda[3] * c3;
+        if (with_value) value_out[k] += value * lifted;
+        const Eigen::Vector3d d = c0 * w0 + c1 * w1 + c2 * w2 + c3 * w3 + lifted * *gradient;
+        out.gradient(k, 0) += d.x();
+        out.gradient(k, 1) += d.y();
+        out.gradient(k, 2) += d.z();
+      }
+    }
+  }
+}
+
+void DmsSplineEvaluator::evaluate(std::span<const Eigen::Vector3d> points, int order, std::vector<DmsSplinePoint>& out) {
+  out.resize(points.size());
+  // (cell, position): points outside the grid (-1) first; a stable order within a cell.
+  std::vector<std::pair<int, std::size_t>> order_of(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) order_of[i] = {index_->reach_grid.cell_of(points[i]), i};
+  std::sort(order_of.begin(), order_of.end());
+  for (const std::pair<int, std::size_t>& entry : order_of) evaluate(points[entry.second], order, out[entry.second]);
 }
 
 DmsSplinePoint DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order) {

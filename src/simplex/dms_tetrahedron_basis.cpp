@@ -126,6 +126,65 @@ void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const DmsTetrahedro
   evaluate_plan(x, checked(plan), order, out);
 }
 
+void DmsTetrahedronBasis::evaluate(const Eigen::Vector3d& x, const DmsTetrahedronPlan& plan, int order,
+                                   DmsBasisValues& out, DmsLastKnotFrames& frames) {
+  if (order < 0 || order > 2) throw InvalidInput("derivative order must be 0, 1 or 2, got " + std::to_string(order));
+  if (!x.allFinite()) throw InvalidInput("the point must be finite");
+  const simplex_detail::DmsRecurrencePlan& p = checked(plan);
+  if (!plan.has_last_knot_frames()) throw InvalidInput("the DMS plan has a flat four of last knots (p_i, q_j, r_k, s_l)");
+  const std::size_t count = multi_indices_.size();
+  frames.lambdas.resize(count);
+  frames.gradients.resize(order >= 1 ? count : 0);
+  if (order == 1 && !p.outside_box(x) && p.knot_at(x) < 0) {
+    // The common case in one pass: W_β is the four of V_β's node, so ∇λ(W_β) serves both eq. 2
+    // for ∇N_β and the frame.
+    out.values.resize(count);
+    out.gradients.resize(count);
+    out.hessians.clear();
+    state_->fit(p);
+    double* m = state_->node_values();
+    double* d = state_->scratch();
+    p.values(x, m, -1, d);
+    const int n = degree_;
+    for (std::size_t b = 0; b < count; ++b) {
+      const int top = p.top(static_cast<int>(b));
+      const int four = p.node_four(top);
+      const double scale = p.scale(static_cast<int>(b));
+      const std::array<Eigen::Vector3d, 4> g = p.four_lambda_gradients(four);
+      frames.lambdas[b] = p.four_lambda(four, d);
+      frames.gradients[b] = g;
+      out.values[b] = scale * m[top];
+      if (n == 0) {
+        out.gradients[b].setZero();
+        continue;
+      }
+      const auto& node = p.interior(top);
+      out.gradients[b] = (scale * n) * (g[0] * m[node.child[0]] + g[1] * m[node.child[1]] + g[2] * m[node.child[2]] +
+                                         g[3] * m[node.child[3]]);
+    }
+    return;
+  }
+  evaluate_plan(x, p, order, out);
+  if (p.outside_box(x)) {
+    const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+    std::fill(frames.lambdas.begin(), frames.lambdas.end(), std::array<double, 4>{});
+    std::fill(frames.gradients.begin(), frames.gradients.end(), std::array<Eigen::Vector3d, 4>{zero, zero, zero, zero});
+    return;
+  }
+  // evaluate_plan left the face determinants of x in the scratch, except at a knot.
+  double* d = state_->scratch();
+  if (p.knot_at(x) >= 0) {
+    state_->fit(p);
+    d = state_->scratch();
+    p.face_determinants(x, d);
+  }
+  for (std::size_t b = 0; b < count; ++b) {
+    const int four = p.node_four(p.top(static_cast<int>(b)));
+    frames.lambdas[b] = p.four_lambda(four, d);
+    if (order >= 1) frames.gradients[b] = p.four_lambda_gradients(four);
+  }
+}
+
 const simplex_detail::DmsRecurrencePlan& DmsTetrahedronBasis::checked(const DmsTetrahedronPlan& plan) const {
   if (plan.degree() != degree_ || !plan.plan_) {
     throw InvalidInput("DMS plan of degree " + std::to_string(plan.degree()) + " for a basis of degree " +
@@ -229,9 +288,18 @@ DmsTetrahedronPlan::DmsTetrahedronPlan(int degree, const std::array<const Eigen:
   for (int c = 0; c < 4; ++c) std::copy(clouds[c], clouds[c] + degree + 1, knots.begin() + c * (degree + 1));
   plan_ = std::make_unique<simplex_detail::DmsRecurrencePlan>();
   simplex_detail::SubsetMemo index;
-  plan_->build(knots.data(), degree, dms_multi_indices(degree), index);
+  const std::vector<std::array<int, 4>> betas = dms_multi_indices(degree);
+  plan_->build(knots.data(), degree, betas, index);
   plan_->shrink_to_fit();
   degree_ = degree;
+  last_knot_frames_ = true;
+  for (std::size_t b = 0; b < betas.size(); ++b) {
+    const int four = plan_->node_four(plan_->top(static_cast<int>(b)));
+    bool last_knots = four >= 0 && !plan_->four_is_flat(four);
+    for (int c = 0; c < 4 && last_knots; ++c)
+      last_knots = plan_->four_knots(four)[static_cast<std::size_t>(c)] == c * (degree + 1) + betas[b][static_cast<std::size_t>(c)];
+    last_knot_frames_ = last_knots && last_knot_frames_;
+  }
 }
 
 bool DmsTetrahedronPlan::matches(const std::array<const Eigen::Vector3d*, 4>& clouds) const {

@@ -172,6 +172,82 @@ TEST(DmsSplineVolume, SharedControlVectorsAreOnePerDomainPoint) {
   }
 }
 
+// The evaluator takes shared volumes through the DMS step from degree n − 1 (§3.2:
+// s = Σ_{|γ| = n−1} N_γ Σ_m λ_m(x | W_γ) c_{γ+e^m}); the same spline with its control vectors
+// copied per tetrahedron goes through all degree-n basis functions. Both must agree everywhere
+// on the closed domain, knot planes and knots included, values and gradients. And the step
+// never reads the last knots t_{v,n}: moving them (validly) leaves a shared spline unchanged.
+TEST(DmsSplineVolume, SharedVolumesByTheDegreeLoweringStepEqualTheFullBasis) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int degree = 1; degree <= 3; ++degree) {
+    SCOPED_TRACE("degree " + std::to_string(degree));
+    DmsSplineVolume shared = cube_volume(degree, DmsControlSharing::Shared);
+    for (Eigen::Index r = 0; r < shared.control_vectors().rows(); ++r) shared.control_vectors()(r, 3) = u(rng);
+    DmsSplineVolume separate = cube_volume(degree, DmsControlSharing::PerTetrahedron);
+    const int tetrahedra = static_cast<int>(shared.domain().tetrahedra.size());
+    for (int t = 0; t < tetrahedra; ++t)
+      for (int b = 0; b < shared.basis_per_tetrahedron(); ++b)
+        separate.control_vectors().row(separate.control_row(t, b)) = shared.control_vectors().row(shared.control_row(t, b));
+    DmsSplineEvaluator lowered(shared), full(separate);
+    double largest_value = 0, largest_gradient = 0;
+    for (const Eigen::Vector3d& x : test_points(shared, rng)) {
+      const DmsSplinePoint a = lowered.evaluate(x, 1), b = full.evaluate(x, 1);
+      ASSERT_EQ(a.tetrahedron, b.tetrahedron);
+      largest_value = std::max(largest_value, (a.value - b.value).cwiseAbs().maxCoeff());
+      const double scale = std::max(1.0, b.gradient.cwiseAbs().maxCoeff());
+      largest_gradient = std::max(largest_gradient, (a.gradient - b.gradient).cwiseAbs().maxCoeff() / scale);
+    }
+    // Measured on these and on 2,000 random points: values within 2.3e-13, gradients within
+    // 2.9e-9 of the largest gradient (degree 2, next to a cloud's small sub-tetrahedra, whose ∇λ
+    // are large: both computations round there).
+    EXPECT_LT(largest_value, 1e-12);
+    EXPECT_LT(largest_gradient, 2e-8);
+
+    // The last knot of every cloud moved halfway towards its vertex: still valid clouds (the
+    // sub-knots stay where generate_knot_clouds may put them), the same shared spline.
+    KnotClouds moved = shared.knots();
+    for (int vertex = 0; vertex < static_cast<int>(shared.domain().points.size()); ++vertex) {
+      Eigen::Vector3d* cloud = &moved.knots[static_cast<std::size_t>(vertex * (degree + 1))];
+      cloud[degree] = 0.5 * (cloud[degree] + cloud[0]);
+    }
+    ASSERT_NO_THROW(validate_knot_clouds(shared.domain(), moved));
+    DmsSplineVolume moved_volume(shared.domain(), moved, DmsControlSharing::Shared, {"density"});
+    moved_volume.control_vectors() = shared.control_vectors();
+    DmsSplineEvaluator moved_evaluator(moved_volume);
+    std::uniform_real_distribution<double> inside(0, 1);
+    for (int i = 0; i < 50; ++i) {
+      const Eigen::Vector3d x(inside(rng), inside(rng), inside(rng));
+      EXPECT_EQ(moved_evaluator.evaluate(x, 1).value, lowered.evaluate(x, 1).value);
+    }
+  }
+}
+
+// The batch evaluation reorders the points by index cell, nothing else: the same results bit for
+// bit, in the order given, for points inside, on the boundary and outside, shared and not.
+TEST(DmsSplineVolume, BatchEvaluationEqualsPointByPoint) {
+  std::mt19937 rng(23);
+  for (const DmsControlSharing sharing : {DmsControlSharing::Shared, DmsControlSharing::PerTetrahedron}) {
+    DmsSplineVolume v = cube_volume(2, sharing);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (Eigen::Index r = 0; r < v.control_vectors().rows(); ++r) v.control_vectors()(r, 3) = u(rng);
+    std::vector<Eigen::Vector3d> points = test_points(v, rng);
+    std::uniform_real_distribution<double> around(-0.2, 1.2);
+    for (int i = 0; i < 100; ++i) points.emplace_back(around(rng), around(rng), around(rng));
+    std::shuffle(points.begin(), points.end(), rng);
+    DmsSplineEvaluator batch(v), single(v);
+    std::vector<DmsSplinePoint> out;
+    batch.evaluate(points, 1, out);
+    ASSERT_EQ(out.size(), points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const DmsSplinePoint expected = single.evaluate(points[i], 1);
+      EXPECT_EQ(out[i].tetrahedron, expected.tetrahedron);
+      EXPECT_EQ(out[i].value, expected.value) << points[i].transpose();
+      EXPECT_EQ(out[i].gradient, expected.gradient) << points[i].transpose();
+    }
+  }
+}
+
 TEST(DmsSplineVolume, IsZeroOutsideTheDomain) {
   DmsSplineVolume v = cube_volume(2);
   v.control_vectors().col(3).setOnes();

@@ -21,8 +21,9 @@ struct SurfaceTetrahedralizationOptions {
 /// Mesh_3 criteria: cell size and facet size `cell_size`, facet distance (the largest distance
 /// from a boundary facet's circumcentre to the surface) `facet_distance`, facet angle >= 25°,
 /// cell radius-edge ratio <= 3; slivers are then removed by exudation (no perturbation).
-/// Sequential, and every random choice of Mesh_3 draws from a generator seeded by `seed`, so the
-/// same input and options give the same mesh. The tetrahedra approximate the inside: their
+/// Sequential, every random choice of Mesh_3 draws from a generator seeded by `seed`, and
+/// exudation has no time limit (make_mesh_3's default stops it after as long as refinement took),
+/// so the same input and options give the same mesh whatever the machine's load. The tetrahedra approximate the inside: their
 /// boundary lies within about `facet_distance` of the surface, not on it.
 /// \throw InvalidInput also (located at `triangles[i]`) for a triangle CGAL cannot add (a
 /// repeated corner or a non-manifold configuration), for an empty surface, and (located at

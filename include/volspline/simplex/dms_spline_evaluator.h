@@ -3,6 +3,7 @@
 // attributes and their gradients (Hua–He–Qin eqs. 2, 6, 7), zero outside the domain.
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
@@ -47,6 +48,11 @@ class DmsSplineEvaluator {
   /// half-open rule, or from inside Ω on ∂Ω. \throw InvalidInput for another order.
   void evaluate(const Eigen::Vector3d& x, int order, DmsSplinePoint& out);
   DmsSplinePoint evaluate(const Eigen::Vector3d& x, int order = 0);
+  /// evaluate(points[i], order, out[i]) for every point (out is resized; the same results bit for
+  /// bit), done in the order of the index cells that hold the points: scattered points then share
+  /// the candidate tetrahedra's plans while they are in the caches instead of loading them anew
+  /// for every point. The sort costs about 0.1 µs per point. \throw InvalidInput as evaluate.
+  void evaluate(std::span<const Eigen::Vector3d> points, int order, std::vector<DmsSplinePoint>& out);
   /// The tetrahedra whose supports' enclosing planes hold x (a superset of those with a basis
   /// function nonzero at x).
   void support_candidates(const Eigen::Vector3d& x, std::vector<int>& out) const;
@@ -60,8 +66,19 @@ class DmsSplineEvaluator {
   /// x (in the closed tetrahedron `located`) is in no half-open domain tetrahedron: the
   /// half-open rule's perturbation of x leaves Ω.
   bool leaves_domain(const Eigen::Vector3d& x, int located) const;
+  /// The same for degree 1, on the tetrahedron degree_zero_tetrahedron(x, located).
+  void add_linear_step(const Eigen::Vector3d& x, int located, int order, bool with_value, DmsSplinePoint& out) const;
+  /// The tetrahedron of a degree-0 spline at x, which lies in the closed tetrahedron `located`.
+  int degree_zero_tetrahedron(const Eigen::Vector3d& x, int located) const;
+  /// Adds the value (with_value) and the gradient (order 1) at x of the tetrahedra
+  /// scratch_->candidates by the DMS step from degree n − 1 (shared control vectors).
+  void add_lower_degree_step(const Eigen::Vector3d& x, int order, bool with_value, DmsSplinePoint& out);
   /// locate(x); *clearly_inside: whether the floating face planes decided it (x clearly inside).
   int locate(const Eigen::Vector3d& x, bool* clearly_inside) const;
+  /// The same among `tetrahedra` (increasing; a superset of those within locate's margin of x).
+  int locate_among(const Eigen::Vector3d& x, std::span<const int> tetrahedra, bool* clearly_inside) const;
+  /// The tetrahedra whose reach (Index::ReachPlanes) holds x, in increasing order.
+  void reaching_tetrahedra(const Eigen::Vector3d& x, std::vector<int>& out) const;
   const DmsSplineVolume* volume_;
   std::shared_ptr<const Index> index_;
   std::unique_ptr<Scratch> scratch_;

@@ -27,6 +27,16 @@ struct DmsBasisValues {
   std::vector<Eigen::Matrix3d> hessians;   // filled for order 2
 };
 
+/// The barycentric coordinates λ_m(x | W_β) with respect to each basis function's last knots
+/// W_β = (p_i, q_j, r_k, s_l), β = (i, j, k, l), and their gradients (constant in x): the weights
+/// of the DMS evaluation step (Hua–He–Qin §3.2, Dahmen–Micchelli–Seidel 1992), which evaluates a
+/// degree-n spline with shared control points from the degree-(n−1) basis,
+///   s(x) = Σ_I Σ_{|γ| = n−1} N_γ^I(x) Σ_m λ_m(x | W_γ) c_{γ+e^m}^I.
+struct DmsLastKnotFrames {
+  std::vector<std::array<double, 4>> lambdas;
+  std::vector<std::array<Eigen::Vector3d, 4>> gradients;  // filled for order >= 1
+};
+
 namespace simplex_detail {
 class DmsRecurrencePlan;
 class DmsRecurrenceState;
@@ -58,9 +68,14 @@ class DmsTetrahedronPlan {
   /// A hint: starts loading the plan into the caches (for the next tetrahedra to be evaluated,
   /// while others are).
   void prefetch() const;
+  /// Whether the recurrence of every V_β steps with W_β = (p_i, q_j, r_k, s_l) (not flat within
+  /// rounding), so that evaluation can also give λ(x | W_β) (DmsLastKnotFrames). True for knot
+  /// clouds that satisfy the DMS conditions (validate_knot_clouds).
+  bool has_last_knot_frames() const { return last_knot_frames_; }
 
  private:
   friend class DmsTetrahedronBasis;
+  bool last_knot_frames_ = false;
   int degree_ = -1;
   std::unique_ptr<simplex_detail::DmsRecurrencePlan> plan_;
 };
@@ -99,6 +114,11 @@ class DmsTetrahedronBasis {
   /// The same from a plan compiled beforehand. \throw InvalidInput for an empty plan, a plan of
   /// another degree or order outside 0..2.
   void evaluate(const Eigen::Vector3d& x, const DmsTetrahedronPlan& plan, int order, DmsBasisValues& out);
+  /// The same, and the barycentric coordinates of x with respect to each W_β (with their
+  /// gradients for order >= 1; zeros where every value and gradient is 0). \throw InvalidInput
+  /// as evaluate, or for a plan without has_last_knot_frames().
+  void evaluate(const Eigen::Vector3d& x, const DmsTetrahedronPlan& plan, int order, DmsBasisValues& out,
+                DmsLastKnotFrames& frames);
 
   /// ∫_a^b N_β^I(origin + t·direction) dt for every β (same order), memoised the same way
   /// (eq. 16 with boundary terms, simplex_spline_line_integral). \throw InvalidInput for a > b
