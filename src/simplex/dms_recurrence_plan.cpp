@@ -62,7 +62,7 @@ bool choose_dms_knots(const std::array<Eigen::Vector3d, kMaxRecurrenceKnots>& kn
 // clip_to_chord for [lo, hi] (finite, lo < hi): the parameters in [lo, hi] where every
 // λ_j + s·μ_j >= 0; false when there are none. Divides only for the j whose λ_j changes sign
 // within [lo, hi] (about two for a chord that crosses the tetrahedron, none for most that miss).
-bool clip_to_chord_within(const std::array<double, 4>& lambda, const std::array<double, 4>& mu, double& lo,
+[[gnu::always_inline]] inline bool clip_to_chord_within(const std::array<double, 4>& lambda, const std::array<double, 4>& mu, double& lo,
                           double& hi) {
   const double lower = lo;
   const double upper = hi;

@@ -124,7 +124,7 @@ class DmsRecurrencePlan {
   // -1 - its position among the leaves for a leaf, its position in interior_ otherwise.
   int add(KnotMask subset, const KnotBinding& binding, Builder& builder);
   // λ of four q from the face determinants.
-  std::array<double, 4> lambda(int q, const double* d) const {
+  [[gnu::always_inline]] std::array<double, 4> lambda(int q, const double* d) const {
     const PlanFour& f = fours_[static_cast<std::size_t>(q)];
     const double s = f.inverse_det;
     return {-s * d[f.face[0]], s * d[f.face[1]], -s * d[f.face[2]], s * d[f.face[3]]};
