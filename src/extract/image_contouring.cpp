@@ -359,7 +359,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     if (sheet_crossing) {
       const double slack = 1e-9;
       bool placed = false;
-      if (found) {
+      {
         // Every sheet crossing the bracket (the chosen crossing first, then the others, nearest
         // first), on the sheet; where several remain at distinct places (a sheet inside S
         // passing near, or tangent to, the boundary), membership tests between them choose
@@ -367,7 +367,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         std::vector<std::tuple<double, double, std::size_t>> candidates;
         for (const auto& h : along)
           if (h.first >= low && h.first <= high)
-            candidates.emplace_back(h.second == x.triangle ? -1.0 : std::abs(h.first - lambda), h.first, h.second);
+            candidates.emplace_back(found && h.second == x.triangle ? -1.0 : std::abs(h.first - lambda), h.first, h.second);
         std::sort(candidates.begin(), candidates.end());
         // Sheets within reach of the edge whose chords miss it (a fold tangent to a cap, say)
         // are tried too, from their triangle nearest the edge.
@@ -477,7 +477,6 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     x.position = a + lambda * ab;
     x.barycentric = contour_barycentric(x.position, triangles[x.triangle]);
   });
-  stats.membership_queries = queries;
   stats.crossings_off_superset = off_superset;
   stats.crossings_on_sheets = on_sheets;
   stats.crossings_after_bisection = after_bisection;
@@ -522,7 +521,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   auto position_of = [&](int v) -> const Eigen::Vector3d& { return result.positions[static_cast<std::size_t>(v)]; };
   // The fan around the crease point of one cell: false (nothing emitted) unless the cell's
   // triangles `local` form one disk and the fan is valid.
-  auto crease_fan = [&](const std::vector<std::array<int, 3>>& local, const std::vector<int>& corners, std::uint64_t cell) {
+  using HalfSpace = std::pair<Eigen::Vector3d, double>;
+  auto crease_fan = [&](const std::vector<std::array<int, 3>>& local, const std::vector<int>& corners, const std::vector<HalfSpace>& region) {
     // The disk's border: directed edges whose reverse is not in the cell, one loop.
     std::set<std::pair<int, int>> directed;
     for (const auto& t : local)
@@ -569,33 +569,49 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         ++rank;
       }
     if (rank < 2) return false;
-    const auto index = grid.index(cell);
-    const Eigen::Vector3d low = grid.origin + grid.h * Eigen::Vector3d(static_cast<double>(index[0]), static_cast<double>(index[1]),
-                                                                     static_cast<double>(index[2]));
-    const Eigen::Vector3d high = low + Eigen::Vector3d::Constant(grid.h);
+    // Clipped to the region n . x <= c (each half-space moved in by `inset`).
     const double inset = 1e-6 * grid.h;
     Eigen::Vector3d apex = centre + shift;
     if (rank == 2) {
       const Eigen::Vector3d direction = svd.matrixV().col(2);
       double s_low = -std::numeric_limits<double>::infinity(), s_high = std::numeric_limits<double>::infinity();
-      for (int d = 0; d < 3; ++d) {
-        if (std::abs(direction(d)) < 1e-12) {
-          if (apex(d) <= low(d) + inset || apex(d) >= high(d) - inset) return false;
-          continue;
+      for (const auto& [n, c] : region) {
+        const double slope = n.dot(direction), room = c - inset - n.dot(apex);
+        if (std::abs(slope) < 1e-12) {
+          if (room <= 0) return false;
+        } else if (slope > 0) {
+          s_high = std::min(s_high, room / slope);
+        } else {
+          s_low = std::max(s_low, room / slope);
         }
-        const double s0 = (low(d) + inset - apex(d)) / direction(d), s1 = (high(d) - inset - apex(d)) / direction(d);
-        s_low = std::max(s_low, std::min(s0, s1));
-        s_high = std::min(s_high, std::max(s0, s1));
       }
       if (!(s_low <= s_high)) return false;
       apex += std::clamp(0.0, s_low, s_high) * direction;
     }
-    for (int d = 0; d < 3; ++d)
-      if (!(apex(d) >= low(d) && apex(d) <= high(d))) return false;
+    for (const auto& [n, c] : region)
+      if (!(n.dot(apex) <= c)) return false;
+    // Each fan triangle faces the way of the disk (area-weighted) or of the cell's triangle it
+    // replaces along the border (a sliver standing on the crease may face sideways): a fold of
+    // the fan would be a self-intersection.
     Eigen::Vector3d disk_normal = Eigen::Vector3d::Zero();
     for (const auto& t : local) disk_normal += (position_of(t[1]) - position_of(t[0])).cross(position_of(t[2]) - position_of(t[0]));
-    for (std::size_t j = 0; j < loop.size(); ++j)
-      if ((position_of(loop[j]) - apex).cross(position_of(loop[(j + 1) % loop.size()]) - apex).dot(disk_normal) <= 0) return false;
+    for (std::size_t j = 0; j < loop.size(); ++j) {
+      const int p = loop[j], q = loop[(j + 1) % loop.size()];
+      const Eigen::Vector3d fan_normal = (position_of(p) - apex).cross(position_of(q) - apex);
+      if (fan_normal.dot(disk_normal) > 0) continue;
+      for (const auto& t : local)
+        for (int i = 0; i < 3; ++i)
+          if (t[static_cast<std::size_t>(i)] == p && t[static_cast<std::size_t>((i + 1) % 3)] == q &&
+              fan_normal.dot((position_of(t[1]) - position_of(t[0])).cross(position_of(t[2]) - position_of(t[0]))) <= 0)
+            return false;
+    }
+    // The crease point must lie on the boundary to half the superset's error: just outside it
+    // (along the disk's outward normal) is outside S and just inside it inside. A sheet's normal
+    // that does not belong to the boundary there (an interior sheet meeting it) fails this.
+    if (disk_normal.norm() > 0) {
+      const Eigen::Vector3d step = 0.25 * reach * disk_normal.normalized();
+      if (is_inside(apex + step) || !is_inside(apex - step)) return false;
+    }
     std::size_t nearest = 0;
     for (std::size_t j = 1; j < corners.size(); ++j)
       if ((position_of(corners[j]) - apex).squaredNorm() < (position_of(corners[nearest]) - apex).squaredNorm()) nearest = j;
@@ -626,6 +642,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       for (std::size_t j = 0; j < count; ++j) corners.push_back(polygon.vertex[j]);
     }
     const std::uint64_t cell = polygons[first_polygon].cell;
+    const std::size_t cell_first = first_polygon;
     first_polygon = end_polygon;
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
@@ -638,11 +655,67 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         smallest_cos = std::min(smallest_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(corners[i])].normal)));
     }
     crease = crease && smallest_cos < crease_cos;
-    if (crease) crease = crease_fan(local, corners, cell);
+    const auto index = grid.index(cell);
+    const Eigen::Vector3d low = grid.origin + grid.h * Eigen::Vector3d(static_cast<double>(index[0]), static_cast<double>(index[1]),
+                                                                     static_cast<double>(index[2]));
     if (crease) {
-      ++stats.crease_vertices;
-    } else {
+      std::vector<HalfSpace> box;
+      for (int d = 0; d < 3; ++d) {
+        const Eigen::Vector3d e = Eigen::Vector3d::Unit(d);
+        box.emplace_back(e, low(d) + grid.h);
+        box.emplace_back(-e, -low(d));
+      }
+      crease = crease_fan(local, corners, box);
+      if (crease) ++stats.crease_vertices;
+    }
+    if (crease) continue;
+    if (!(sheet_crossing && options.crease_angle_degrees > 0 && smallest_cos < crease_cos)) {
       faces.insert(faces.end(), local.begin(), local.end());
+      continue;
+    }
+    // The cell's triangles are no disk or its fan folds: each tetrahedron's polygon alone.
+    for (std::size_t q = cell_first; q < first_polygon; ++q) {
+      const ContourPolygon& polygon = polygons[q];
+      const auto count = static_cast<std::size_t>(polygon.count);
+      std::vector<std::array<int, 3>> own;
+      std::size_t first = 0;
+      if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
+                            (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
+        first = 1;
+      for (std::size_t j = 1; j + 1 < count; ++j)
+        own.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
+      std::vector<int> own_corners(polygon.vertex.begin(), polygon.vertex.begin() + polygon.count);
+      std::sort(own_corners.begin(), own_corners.end());
+      bool sharp = true;
+      double own_cos = 1;
+      for (std::size_t j = 0; sharp && j < own_corners.size(); ++j) {
+        const ContourCrossing& xj = crossings[static_cast<std::size_t>(own_corners[j])];
+        if (!xj.on_sheet || xj.normal.isZero()) sharp = false;
+        for (std::size_t i = 0; sharp && i < j; ++i)
+          own_cos = std::min(own_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(own_corners[i])].normal)));
+      }
+      if (sharp && own_cos < crease_cos) {
+        // The tetrahedron's four faces, outward.
+        const auto& tet = kContourKuhnTetrahedra[static_cast<std::size_t>(polygon.tetrahedron)];
+        std::array<Eigen::Vector3d, 4> corner;
+        for (int i = 0; i < 4; ++i) {
+          const int c = tet[static_cast<std::size_t>(i)];
+          corner[static_cast<std::size_t>(i)] = low + grid.h * Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        }
+        std::vector<HalfSpace> faces_of_tet;
+        for (int i = 0; i < 4; ++i) {
+          const Eigen::Vector3d& p0 = corner[static_cast<std::size_t>((i + 1) % 4)];
+          Eigen::Vector3d n = (corner[static_cast<std::size_t>((i + 2) % 4)] - p0).cross(corner[static_cast<std::size_t>((i + 3) % 4)] - p0);
+          if (n.dot(corner[static_cast<std::size_t>(i)] - p0) > 0) n = -n;
+          n.normalize();
+          faces_of_tet.emplace_back(n, n.dot(p0));
+        }
+        if (crease_fan(own, own_corners, faces_of_tet)) {
+          ++stats.crease_vertices;
+          continue;
+        }
+      }
+      faces.insert(faces.end(), own.begin(), own.end());
     }
   }
 
@@ -702,9 +775,11 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       const int x1 = t1[0], x2 = t2[0];
       if (x1 < n_crossings || x2 < n_crossings || x1 == x2 || edge_faces.count(edge_key(x1, x2))) continue;
       const std::array<int, 3> n1{x1, u, x2}, n2{x1, x2, v};
-      const Eigen::Vector3d old_normal = normal_of(t1).normalized() + normal_of(t2).normalized();
-      if (normal_of(n1).dot(old_normal) <= 0 || normal_of(n2).dot(old_normal) <= 0) continue;
-      if (normal_of(n1).dot(normal_of(t1)) <= 0 || normal_of(n2).dot(normal_of(t2)) <= 0) continue;
+      // The quadrilateral's way (area-weighted: one of the old triangles is often a sliver
+      // standing on the crease).
+      const Eigen::Vector3d old_normal = normal_of(t1) + normal_of(t2);
+      const Eigen::Vector3d m1 = normal_of(n1), m2 = normal_of(n2);
+      if (m1.dot(old_normal) <= 0 || m2.dot(old_normal) <= 0) continue;
       faces[static_cast<std::size_t>(f1)] = n1;
       faces[static_cast<std::size_t>(f2)] = n2;
       replace_face(u, x2, f2, f1);
@@ -732,6 +807,29 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     }
     result.add_triangle(f[0], f[1], f[2], part < 0 ? part_of(f[0]) : part);
   }
+  // Crossings inside a cell's disk that a crease fan replaced are used by no face: dropped.
+  std::vector<int> renumber(result.num_vertices(), -1);
+  for (const auto& t : result.triangles)
+    for (int v : t) renumber[static_cast<std::size_t>(v)] = 0;
+  int used = 0;
+  for (std::size_t v = 0; v < renumber.size(); ++v)
+    if (renumber[v] == 0) {
+      renumber[v] = used;
+      const auto to = static_cast<std::size_t>(used++);
+      result.positions[to] = result.positions[v];
+      result.parameters[to] = result.parameters[v];
+      if (!out.extra.empty()) out.extra[to] = out.extra[v];
+      out.source_vertex[to] = out.source_vertex[v];
+    }
+  if (used < static_cast<int>(renumber.size())) {
+    result.positions.resize(static_cast<std::size_t>(used));
+    result.parameters.resize(static_cast<std::size_t>(used));
+    if (!out.extra.empty()) out.extra.resize(static_cast<std::size_t>(used));
+    out.source_vertex.resize(static_cast<std::size_t>(used));
+    for (auto& t : result.triangles)
+      for (int& v : t) v = renumber[static_cast<std::size_t>(v)];
+  }
+  stats.membership_queries = queries;
   measure_trimmed_boundary(result, stats);
   stats.seconds_checks = seconds_since(checks_start);
   if (options.progress) options.progress->end_phase();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -118,6 +119,17 @@ std::optional<SheetLineCrossing<D>> sheet_line_crossing(const TensorSpline<D>& s
     const bool converged = residual.head<3>().norm() <= 1e-10 * length && (constraints == 0 || residual.tail(constraints).norm() <= 1e-9);
     if (converged) {
       if (lambda < -1e-9 || lambda > 1 + 1e-9) return std::nullopt;
+      // A determinant that vanishes because a column does (a pole of a ball's or a cylinder's
+      // parameterisation, swept) marks no fold: J keeps its sign across it.
+      if (constraints > 0) {
+        double smallest = std::numeric_limits<double>::infinity(), largest = 0;
+        for (int j = 0; j < k; ++j) {
+          const double norm = partial(free[static_cast<std::size_t>(j)]).norm();
+          smallest = std::min(smallest, norm);
+          largest = std::max(largest, norm);
+        }
+        if (smallest < 1e-3 * largest) return std::nullopt;
+      }
       SheetLineCrossing<D> out;
       out.parameter = p;
       out.lambda = std::clamp(lambda, 0.0, 1.0);

@@ -61,7 +61,7 @@ struct SweptEnvelopeOptions {
   SupersetTrimmingOptions trimming;
   /// Contouring: grid spacing in multiples of `tolerance` (the other contouring options as
   /// `contouring` says; its cell_size and superset_error are set from tolerance).
-  double contour_cell_factor = 4;
+  double contour_cell_factor = 3;
   ImageContouringOptions contouring;
   Progress* progress = nullptr;
 };
