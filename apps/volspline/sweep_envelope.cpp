@@ -61,6 +61,10 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                      {"grid_cells", t.grid_cells},
                      {"grid_corners", t.grid_corners},
                      {"crossings_off_superset", t.crossings_off_superset},
+                     {"crossings_on_sheets", t.crossings_on_sheets},
+                     {"crossings_after_bisection", t.crossings_after_bisection},
+                     {"crease_vertices", t.crease_vertices},
+                     {"crease_flips", t.crease_flips},
                      {"seconds", {{"refine", t.seconds_refine}, {"classify", t.seconds_classify}, {"checks", t.seconds_checks}}}};
     j["closed"] = t.closed;
     j["oriented"] = t.oriented;

@@ -7,11 +7,18 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <numbers>
+#include <set>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <boost/iterator/function_output_iterator.hpp>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -61,11 +68,26 @@ Eigen::Vector3d contour_barycentric(const Eigen::Vector3d& p, const ContourTrian
 
 // Where the boundary crosses one grid edge: the point, and the superset triangle it lies on
 // with barycentric coordinates there.
+// With the sheets' equations, the vertex is on the sheet (on_sheet) with its parameters, extra
+// parameter and unit normal there.
 struct ContourCrossing {
   Eigen::Vector3d position;
   std::size_t triangle = 0;
   Eigen::Vector3d barycentric;
-  bool on_superset = true;
+  bool on_sheet = false;
+  double lambda = 0;
+  Eigen::Vector3d parameters = Eigen::Vector3d::Zero();
+  double extra = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+
+// The part of the contour in one tetrahedron: a cycle of 3 or 4 crossings (vertex ids), outward,
+// and the tetrahedron (its cell's key and its index in kContourKuhnTetrahedra).
+struct ContourPolygon {
+  std::array<int, 4> vertex{};
+  int count = 0;
+  std::uint64_t cell = 0;
+  int tetrahedron = 0;
 };
 
 // The six Kuhn tetrahedra of the unit cube: 000 -> e_p0 -> e_p0 + e_p1 -> 111 for each
@@ -77,7 +99,8 @@ constexpr std::array<std::array<int, 4>, 6> kContourKuhnTetrahedra{{
 }  // namespace
 
 TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::vector<double>& extra,
-                                       const ImageMembershipTest& inside, const ImageContouringOptions& options) {
+                                       const ImageMembershipTest& inside, const ImageContouringOptions& options,
+                                       const SupersetSheetCrossing& sheet_crossing, const std::vector<int>& sheet_of_triangle) {
   validate_mesh(superset);
   if (!extra.empty() && extra.size() != superset.num_vertices())
     throw InvalidInput("expected one extra parameter per vertex (" + std::to_string(superset.num_vertices()) + "), got " +
@@ -88,6 +111,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     throw InvalidInput("expected 0 <= superset_error < 0.5", "superset_error");
   if (options.bisection_steps < 1 || options.bisection_steps > 60) throw InvalidInput("expected 1 to 60 bisection steps", "bisection_steps");
   if (options.max_cells < 1) throw InvalidInput("expected a positive budget of cells", "max_cells");
+  if (!sheet_of_triangle.empty() && sheet_of_triangle.size() != superset.num_triangles())
+    throw InvalidInput("expected one sheet number per triangle (" + std::to_string(superset.num_triangles()) + "), got " +
+                           std::to_string(sheet_of_triangle.size()),
+                       "sheet_of_triangle");
   TrimmedBoundary out;
   SupersetTrimmingStats& stats = out.stats;
   stats.superset_triangles = static_cast<std::int64_t>(superset.num_triangles());
@@ -99,7 +126,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   const double diagonal = std::max((hi - lo).norm(), 1e-300);
   ContourGrid grid;
   grid.h = options.cell_size * diagonal;
-  grid.origin = lo - Eigen::Vector3d::Constant(2 * grid.h);
+  // Shifted by fractions of h that no model's round coordinates share, so that planar faces and
+  // the creases between them do not run through grid corners and faces (where they would make
+  // crossings at the ends of edges and creases on tetrahedron faces).
+  grid.origin = lo - grid.h * Eigen::Vector3d(2.3183, 2.2718, 2.1414);
   for (int d = 0; d < 3; ++d) grid.n[static_cast<std::size_t>(d)] = static_cast<std::int64_t>(std::ceil((hi[d] - lo[d]) / grid.h)) + 5;
   stats.cell_size = grid.h;
   const double reach = options.superset_error * diagonal;
@@ -201,13 +231,13 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   stats.grid_cells = static_cast<std::int64_t>(cells.size());
   stats.grid_corners = static_cast<std::int64_t>(label.size());
 
-  // Marching tetrahedra: triangles as triples of crossed grid edges (inside corner, outside
-  // corner), oriented from inside to outside on the edges' midpoints (the level set at 1/2 of
-  // the linear interpolant of the labels, whose orientation moving the vertices along their
-  // edges does not change).
+  // Marching tetrahedra: one polygon per tetrahedron with mixed corners, a cycle of 3 or 4
+  // crossed grid edges (inside corner, outside corner), oriented from inside to outside on the
+  // edges' midpoints (the level set at 1/2 of the linear interpolant of the labels, whose
+  // orientation moving the vertices along their edges does not change).
   std::map<std::pair<std::uint64_t, std::uint64_t>, int> edge_vertex;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
-  std::vector<std::array<int, 3>> faces;
+  std::vector<ContourPolygon> polygons;
   auto edge_id = [&](std::uint64_t a, std::uint64_t b) {
     const auto [it, fresh] = edge_vertex.try_emplace({a, b}, static_cast<int>(edges.size()));
     if (fresh) edges.emplace_back(a, b);
@@ -231,31 +261,31 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       for (int c : ins) in_centre += corner(c) / static_cast<double>(ins.size());
       for (int c : outs) out_centre += corner(c) / static_cast<double>(outs.size());
       const Eigen::Vector3d outward = out_centre - in_centre;
-      auto emit = [&](std::array<std::pair<int, int>, 3> e) {
-        auto mid = [&](const std::pair<int, int>& p) { return Eigen::Vector3d(0.5 * (corner(p.first) + corner(p.second))); };
-        if ((mid(e[1]) - mid(e[0])).cross(mid(e[2]) - mid(e[0])).dot(outward) < 0) std::swap(e[1], e[2]);
-        std::array<int, 3> f{};
-        for (int j = 0; j < 3; ++j)
-          f[static_cast<std::size_t>(j)] = edge_id(key[static_cast<std::size_t>(e[static_cast<std::size_t>(j)].first)],
-                                                   key[static_cast<std::size_t>(e[static_cast<std::size_t>(j)].second)]);
-        faces.push_back(f);
-      };
-      if (ins.size() == 1) {
-        emit({{{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[0], outs[2]}}});
-      } else if (outs.size() == 1) {
-        emit({{{ins[0], outs[0]}, {ins[1], outs[0]}, {ins[2], outs[0]}}});
-      } else {
-        // The quadrilateral ac, ad, bd, bc (a, b inside; c, d outside), split along ac-bd.
-        const int a = ins[0], b = ins[1], c = outs[0], d = outs[1];
-        emit({{{a, c}, {a, d}, {b, d}}});
-        emit({{{a, c}, {b, d}, {b, c}}});
-      }
+      std::vector<std::pair<int, int>> cycle;
+      if (ins.size() == 1) cycle = {{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[0], outs[2]}};
+      else if (outs.size() == 1) cycle = {{ins[0], outs[0]}, {ins[1], outs[0]}, {ins[2], outs[0]}};
+      else cycle = {{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[1], outs[1]}, {ins[1], outs[0]}};
+      auto mid = [&](const std::pair<int, int>& p) { return Eigen::Vector3d(0.5 * (corner(p.first) + corner(p.second))); };
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      for (std::size_t j = 0; j < cycle.size(); ++j) normal += mid(cycle[j]).cross(mid(cycle[(j + 1) % cycle.size()]));
+      if (normal.dot(outward) < 0) std::reverse(cycle.begin(), cycle.end());
+      ContourPolygon polygon;
+      polygon.count = static_cast<int>(cycle.size());
+      for (std::size_t j = 0; j < cycle.size(); ++j)
+        polygon.vertex[j] = edge_id(key[static_cast<std::size_t>(cycle[j].first)], key[static_cast<std::size_t>(cycle[j].second)]);
+      polygon.cell = cell;
+      polygon.tetrahedron = static_cast<int>(&tet - kContourKuhnTetrahedra.data());
+      polygons.push_back(polygon);
     }
   }
 
   // The crossings: the superset's intersections with the edge, sorted along it; between the
   // inside end and the outside end, the crossing after the last stretch found inside (binary
-  // search over the stretches between crossings). Off the superset: bisection.
+  // search over the stretches between crossings), which brackets the boundary between the last
+  // probe inside and the first outside. With the sheets' equations the vertex goes onto the
+  // sheet of that crossing (or of the next one in the bracket), and when none crosses inside the
+  // bracket (the superset's chords passed the edge by), the bracket is bisected and the sheets
+  // near its end are tried there. Off every sheet: the bisection point.
   // Zero-area triangles of the superset cannot be crossed (and CGAL's segment-triangle
   // intersection requires a proper triangle): the tree holds the others, mapped back by index.
   std::vector<ContourTriangle> proper_triangles;
@@ -270,7 +300,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   tree.build();
   tree.accelerate_distance_queries();
   std::vector<ContourCrossing> crossings(edges.size());
-  std::atomic<std::int64_t> off_superset{0};
+  std::atomic<std::int64_t> off_superset{0}, on_sheets{0}, after_bisection{0};
   tbb::parallel_for(std::size_t{0}, edges.size(), [&](std::size_t e) {
     const Eigen::Vector3d a = grid.point(edges[e].first), b = grid.point(edges[e].second);
     const Eigen::Vector3d ab = b - a;
@@ -293,41 +323,167 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     for (const auto& h : along)
       if (distinct.empty() || h.first - distinct.back().first > merge) distinct.push_back(h);
     ContourCrossing& x = crossings[e];
-    double lambda = 0.5;
+    // The boundary lies in [low, high]: a is inside, b outside, and so are the probes.
+    double low = 0, high = 1, lambda = 0.5;
+    bool found = false;
     if (!distinct.empty()) {
       // Stretch s lies between crossing s - 1 and crossing s; stretch 0 is inside, the last outside.
       std::size_t in_stretch = 0, out_stretch = distinct.size();
       while (out_stretch - in_stretch > 1) {
         const std::size_t mid = (in_stretch + out_stretch) / 2;
         const double probe = 0.5 * (distinct[mid - 1].first + distinct[mid].first);
-        (is_inside(a + probe * ab) ? in_stretch : out_stretch) = mid;
+        if (is_inside(a + probe * ab)) {
+          in_stretch = mid;
+          low = probe;
+        } else {
+          out_stretch = mid;
+          high = probe;
+        }
       }
       lambda = distinct[in_stretch].first;
       x.triangle = distinct[in_stretch].second;
-    } else {
-      double l = 0, h = 1;
-      for (int s = 0; s < options.bisection_steps; ++s) {
-        const double m = 0.5 * (l + h);
-        (is_inside(a + m * ab) ? l : h) = m;
+      found = true;
+    }
+    auto try_sheet = [&](std::size_t t, double start, double from, double to) {
+      const Eigen::Vector3d bary = contour_barycentric(a + start * ab, triangles[t]);
+      const std::optional<SheetCrossing> c = sheet_crossing(t, bary, start, a, b);
+      if (!c || c->lambda < from || c->lambda > to) return false;
+      x.triangle = t;
+      x.on_sheet = true;
+      x.lambda = c->lambda;
+      x.parameters = c->parameters;
+      x.extra = c->extra;
+      x.normal = c->normal;
+      return true;
+    };
+    if (sheet_crossing) {
+      const double slack = 1e-9;
+      bool placed = false;
+      {
+        // Every sheet crossing the bracket (the chosen crossing first, then the others, nearest
+        // first), on the sheet; where several remain at distinct places (a sheet inside S
+        // passing near, or tangent to, the boundary), membership tests between them choose
+        // as above.
+        std::vector<std::tuple<double, double, std::size_t>> candidates;
+        for (const auto& h : along)
+          if (h.first >= low && h.first <= high)
+            candidates.emplace_back(found && h.second == x.triangle ? -1.0 : std::abs(h.first - lambda), h.first, h.second);
+        std::sort(candidates.begin(), candidates.end());
+        // Sheets within reach of the edge whose chords miss it (a fold tangent to a cap, say)
+        // are tried too, from their triangle nearest the edge.
+        if (!sheet_of_triangle.empty()) {
+          const double r = reach;
+          const CGAL::Bbox_3 box(std::min(a.x(), b.x()) - r, std::min(a.y(), b.y()) - r, std::min(a.z(), b.z()) - r,
+                                 std::max(a.x(), b.x()) + r, std::max(a.y(), b.y()) + r, std::max(a.z(), b.z()) + r);
+          std::map<int, std::pair<double, std::size_t>> nearest_of_sheet;
+          std::set<int> crossing_sheets;
+          for (const auto& c : candidates) crossing_sheets.insert(sheet_of_triangle[std::get<2>(c)]);
+          const Eigen::Vector3d middle = 0.5 * (a + b);
+          const ContourPoint centre(middle.x(), middle.y(), middle.z());
+          const double within = r + 0.5 * std::sqrt(ab.squaredNorm());
+          tree.all_intersected_primitives(box, boost::make_function_output_iterator([&](ContourTree::Primitive_id id) {
+            const std::size_t t = proper_source[static_cast<std::size_t>(id - proper_triangles.cbegin())];
+            const int sheet = sheet_of_triangle[t];
+            if (crossing_sheets.count(sheet)) return;
+            const double d = CGAL::squared_distance(centre, triangles[t]);
+            if (d > within * within) return;
+            const auto [it, fresh] = nearest_of_sheet.try_emplace(sheet, d, t);
+            if (!fresh && d < it->second.first) it->second = {d, t};
+          }));
+          for (const auto& [sheet, near] : nearest_of_sheet) {
+            const ContourTriangle& tri = triangles[near.second];
+            const Eigen::Vector3d centroid((tri[0].x() + tri[1].x() + tri[2].x()) / 3, (tri[0].y() + tri[1].y() + tri[2].y()) / 3,
+                                           (tri[0].z() + tri[1].z() + tri[2].z()) / 3);
+            candidates.emplace_back(2.0, std::clamp((centroid - a).dot(ab) / ab.squaredNorm(), low, high), near.second);
+          }
+        }
+        std::set<std::size_t> tried;
+        std::set<int> tried_sheets;
+        std::vector<std::pair<SheetCrossing, std::size_t>> on_sheets;
+        for (const auto& [order, start, t] : candidates) {
+          if (tried.size() >= 8) break;
+          if (!tried.insert(t).second) continue;
+          if (!sheet_of_triangle.empty() && !tried_sheets.insert(sheet_of_triangle[t]).second) continue;
+          const Eigen::Vector3d bary = contour_barycentric(a + start * ab, triangles[t]);
+          const std::optional<SheetCrossing> c = sheet_crossing(t, bary, start, a, b);
+          if (c && c->lambda >= low - slack && c->lambda <= high + slack) on_sheets.emplace_back(*c, t);
+        }
+        std::stable_sort(on_sheets.begin(), on_sheets.end(), [](const auto& p, const auto& q) { return p.first.lambda < q.first.lambda; });
+        std::vector<std::pair<SheetCrossing, std::size_t>> apart;
+        for (const auto& c : on_sheets)
+          if (apart.empty() || c.first.lambda - apart.back().first.lambda > 1e-9) apart.push_back(c);
+        if (!apart.empty()) {
+          std::size_t in_stretch = 0, out_stretch = apart.size();
+          while (out_stretch - in_stretch > 1) {
+            const std::size_t mid = (in_stretch + out_stretch) / 2;
+            const double probe = 0.5 * (apart[mid - 1].first.lambda + apart[mid].first.lambda);
+            (is_inside(a + probe * ab) ? in_stretch : out_stretch) = mid;
+          }
+          const SheetCrossing& c = apart[in_stretch].first;
+          x.triangle = apart[in_stretch].second;
+          x.on_sheet = true;
+          x.lambda = c.lambda;
+          x.parameters = c.parameters;
+          x.extra = c.extra;
+          x.normal = c.normal;
+          placed = true;
+        }
       }
-      lambda = 0.5 * (l + h);
+      if (!placed) {
+        for (int s = 0; s < options.bisection_steps + 8; ++s) {
+          const double m = 0.5 * (low + high);
+          (is_inside(a + m * ab) ? low : high) = m;
+        }
+        const Eigen::Vector3d p = a + 0.5 * (low + high) * ab;
+        const double r = reach + (high - low) * std::sqrt(ab.squaredNorm());
+        std::vector<std::size_t> near;
+        tree.all_intersected_primitives(CGAL::Bbox_3(p.x() - r, p.y() - r, p.z() - r, p.x() + r, p.y() + r, p.z() + r),
+                                        boost::make_function_output_iterator([&](ContourTree::Primitive_id id) {
+                                          near.push_back(proper_source[static_cast<std::size_t>(id - proper_triangles.cbegin())]);
+                                        }));
+        const ContourPoint cp(p.x(), p.y(), p.z());
+        std::vector<std::pair<double, std::size_t>> by_distance;
+        for (std::size_t t : near) by_distance.emplace_back(CGAL::squared_distance(cp, triangles[t]), t);
+        std::sort(by_distance.begin(), by_distance.end());
+        const double margin = (high - low) + slack;
+        for (std::size_t q = 0; q < by_distance.size() && q < 24 && !placed; ++q)
+          placed = try_sheet(by_distance[q].second, 0.5 * (low + high), low - margin, high + margin);
+        if (placed) {
+          ++after_bisection;
+        } else {
+          lambda = 0.5 * (low + high);
+          found = false;
+        }
+      }
+      if (placed) {
+        ++on_sheets;
+        lambda = x.lambda;
+      }
+    } else if (!found) {
+      for (int s = 0; s < options.bisection_steps; ++s) {
+        const double m = 0.5 * (low + high);
+        (is_inside(a + m * ab) ? low : high) = m;
+      }
+      lambda = 0.5 * (low + high);
+    }
+    if (!x.on_sheet && !found) {
       const Eigen::Vector3d p = a + lambda * ab;
       const auto closest = tree.closest_point_and_primitive(ContourPoint(p.x(), p.y(), p.z()));
       x.triangle = proper_source[static_cast<std::size_t>(closest.second - proper_triangles.cbegin())];
-      x.on_superset = false;
       ++off_superset;
     }
     // Strictly inside the edge, so that no triangle degenerates.
-    lambda = std::clamp(lambda, 1e-4, 1 - 1e-4);
+    lambda = std::clamp(lambda, 1e-6, 1 - 1e-6);
     x.position = a + lambda * ab;
     x.barycentric = contour_barycentric(x.position, triangles[x.triangle]);
   });
-  stats.membership_queries = queries;
   stats.crossings_off_superset = off_superset;
+  stats.crossings_on_sheets = on_sheets;
+  stats.crossings_after_bisection = after_bisection;
   stats.seconds_classify = seconds_since(classify_start);
 
-  // The mesh: parameters (and extra) interpolated in the crossing's superset triangle; a face
-  // takes the part most of its vertices' triangles have.
+  // The mesh: parameters (and extra) from the sheet, or interpolated in the crossing's superset
+  // triangle.
   const auto checks_start = ContourClock::now();
   if (options.progress) options.progress->begin_phase("checks");
   TriangleMesh& result = out.mesh;
@@ -335,23 +491,345 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   for (std::size_t e = 0; e < crossings.size(); ++e) {
     const ContourCrossing& x = crossings[e];
     const auto& tri = superset.triangles[x.triangle];
-    Eigen::Vector3d param = Eigen::Vector3d::Zero();
-    double value = 0;
-    for (int j = 0; j < 3; ++j) {
-      const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
-      param += x.barycentric[j] * superset.parameters[v];
-      if (!extra.empty()) value += x.barycentric[j] * extra[v];
+    Eigen::Vector3d param = x.parameters;
+    double value = x.extra;
+    if (!x.on_sheet) {
+      param.setZero();
+      value = 0;
+      for (int j = 0; j < 3; ++j) {
+        const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
+        param += x.barycentric[j] * superset.parameters[v];
+        if (!extra.empty()) value += x.barycentric[j] * extra[v];
+      }
     }
     result.add_vertex(x.position, param);
     if (!extra.empty()) out.extra.push_back(value);
     out.source_vertex.push_back(tri[0]);
     vertex_part[e] = superset.parts[x.triangle];
   }
-  for (const auto& f : faces) {
-    const int p0 = vertex_part[static_cast<std::size_t>(f[0])], p1 = vertex_part[static_cast<std::size_t>(f[1])],
-              p2 = vertex_part[static_cast<std::size_t>(f[2])];
-    result.add_triangle(f[0], f[1], f[2], (p1 == p2 && p1 != p0) ? p1 : p0);
+
+  // Creases: in a grid cell whose vertices' sheet normals differ by more than the crease angle,
+  // the surface bends sharply inside it (extended marching cubes, Kobbelt et al. 2001). When the
+  // cell's triangles form one disk, they are replaced by a fan around the point nearest the
+  // disk's centre where the vertices' tangent planes meet (the truncated least squares of dual
+  // contouring, Ju et al. 2002), clipped to the cell, provided every fan triangle faces the
+  // disk's way. The fan keeps the disk's border, so the surface stays closed and oriented.
+  const double crease_cos = std::cos(options.crease_angle_degrees * std::numbers::pi / 180);
+  const auto n_crossings = static_cast<int>(crossings.size());
+  std::vector<std::array<int, 3>> faces;
+  auto part_of = [&](int v) { return vertex_part[static_cast<std::size_t>(v)]; };
+  auto position_of = [&](int v) -> const Eigen::Vector3d& { return result.positions[static_cast<std::size_t>(v)]; };
+  // The fan around the crease point of one cell: false (nothing emitted) unless the cell's
+  // triangles `local` form one disk and the fan is valid.
+  using HalfSpace = std::pair<Eigen::Vector3d, double>;
+  auto crease_fan = [&](const std::vector<std::array<int, 3>>& local, const std::vector<int>& corners, const std::vector<HalfSpace>& region) {
+    // The disk's border: directed edges whose reverse is not in the cell, one loop.
+    std::set<std::pair<int, int>> directed;
+    for (const auto& t : local)
+      for (int j = 0; j < 3; ++j) directed.emplace(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]);
+    std::map<int, int> next;
+    std::size_t undirected = 0;
+    for (const auto& [p, q] : directed) {
+      if (!directed.count({q, p})) {
+        if (!next.emplace(p, q).second) return false;
+        ++undirected;
+      } else if (p < q) {
+        ++undirected;
+      }
+    }
+    if (next.size() < 3) return false;
+    if (static_cast<std::ptrdiff_t>(corners.size()) - static_cast<std::ptrdiff_t>(undirected) + static_cast<std::ptrdiff_t>(local.size()) != 1)
+      return false;
+    std::vector<int> loop{next.begin()->first};
+    while (loop.size() <= next.size()) {
+      const auto it = next.find(loop.back());
+      if (it == next.end()) return false;
+      if (it->second == loop.front()) break;
+      loop.push_back(it->second);
+    }
+    if (loop.size() != next.size()) return false;
+    // The tangent planes' meeting point nearest the centre: a point (three independent normals,
+    // a corner) or a line (two, a crease), clipped to the cell.
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (int v : corners) centre += position_of(v) / static_cast<double>(corners.size());
+    Eigen::MatrixX3d planes(static_cast<Eigen::Index>(corners.size()), 3);
+    Eigen::VectorXd offsets(static_cast<Eigen::Index>(corners.size()));
+    for (std::size_t j = 0; j < corners.size(); ++j) {
+      const Eigen::Vector3d& n = crossings[static_cast<std::size_t>(corners[j])].normal;
+      planes.row(static_cast<Eigen::Index>(j)) = n.transpose();
+      offsets(static_cast<Eigen::Index>(j)) = n.dot(position_of(corners[j]) - centre);
+    }
+    const Eigen::JacobiSVD<Eigen::MatrixX3d> svd(planes, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::Vector3d sigma = svd.singularValues();
+    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+    int rank = 0;
+    for (int i = 0; i < 3; ++i)
+      if (sigma(i) > 0.1 * sigma(0)) {
+        shift += svd.matrixV().col(i) * (svd.matrixU().col(i).dot(offsets) / sigma(i));
+        ++rank;
+      }
+    if (rank < 2) return false;
+    // Clipped to the region n . x <= c (each half-space moved in by `inset`).
+    const double inset = 1e-6 * grid.h;
+    Eigen::Vector3d apex = centre + shift;
+    if (rank == 2) {
+      const Eigen::Vector3d direction = svd.matrixV().col(2);
+      double s_low = -std::numeric_limits<double>::infinity(), s_high = std::numeric_limits<double>::infinity();
+      for (const auto& [n, c] : region) {
+        const double slope = n.dot(direction), room = c - inset - n.dot(apex);
+        if (std::abs(slope) < 1e-12) {
+          if (room <= 0) return false;
+        } else if (slope > 0) {
+          s_high = std::min(s_high, room / slope);
+        } else {
+          s_low = std::max(s_low, room / slope);
+        }
+      }
+      if (!(s_low <= s_high)) return false;
+      apex += std::clamp(0.0, s_low, s_high) * direction;
+    }
+    for (const auto& [n, c] : region)
+      if (!(n.dot(apex) <= c)) return false;
+    // Each fan triangle faces the way of the disk (area-weighted) or of the cell's triangle it
+    // replaces along the border (a sliver standing on the crease may face sideways): a fold of
+    // the fan would be a self-intersection.
+    Eigen::Vector3d disk_normal = Eigen::Vector3d::Zero();
+    for (const auto& t : local) disk_normal += (position_of(t[1]) - position_of(t[0])).cross(position_of(t[2]) - position_of(t[0]));
+    for (std::size_t j = 0; j < loop.size(); ++j) {
+      const int p = loop[j], q = loop[(j + 1) % loop.size()];
+      const Eigen::Vector3d fan_normal = (position_of(p) - apex).cross(position_of(q) - apex);
+      if (fan_normal.dot(disk_normal) > 0) continue;
+      for (const auto& t : local)
+        for (int i = 0; i < 3; ++i)
+          if (t[static_cast<std::size_t>(i)] == p && t[static_cast<std::size_t>((i + 1) % 3)] == q &&
+              fan_normal.dot((position_of(t[1]) - position_of(t[0])).cross(position_of(t[2]) - position_of(t[0]))) <= 0)
+            return false;
+    }
+    // The crease point must lie on the boundary to half the superset's error: just outside it
+    // (along the disk's outward normal) is outside S and just inside it inside. A sheet's normal
+    // that does not belong to the boundary there (an interior sheet meeting it) fails this.
+    if (disk_normal.norm() > 0) {
+      const Eigen::Vector3d step = 0.25 * reach * disk_normal.normalized();
+      if (is_inside(apex + step) || !is_inside(apex - step)) return false;
+    }
+    std::size_t nearest = 0;
+    for (std::size_t j = 1; j < corners.size(); ++j)
+      if ((position_of(corners[j]) - apex).squaredNorm() < (position_of(corners[nearest]) - apex).squaredNorm()) nearest = j;
+    const int near_vertex = corners[nearest];
+    const int v = static_cast<int>(result.num_vertices());
+    result.add_vertex(apex, result.parameters[static_cast<std::size_t>(near_vertex)]);
+    if (!extra.empty()) out.extra.push_back(out.extra[static_cast<std::size_t>(near_vertex)]);
+    out.source_vertex.push_back(out.source_vertex[static_cast<std::size_t>(near_vertex)]);
+    vertex_part.push_back(vertex_part[static_cast<std::size_t>(near_vertex)]);
+    for (std::size_t j = 0; j < loop.size(); ++j) faces.push_back({v, loop[j], loop[(j + 1) % loop.size()]});
+    return true;
+  };
+  for (std::size_t first_polygon = 0; first_polygon < polygons.size();) {
+    std::size_t end_polygon = first_polygon;
+    while (end_polygon < polygons.size() && polygons[end_polygon].cell == polygons[first_polygon].cell) ++end_polygon;
+    std::vector<std::array<int, 3>> local;
+    std::vector<int> corners;
+    for (std::size_t q = first_polygon; q < end_polygon; ++q) {
+      const ContourPolygon& polygon = polygons[q];
+      const auto count = static_cast<std::size_t>(polygon.count);
+      // A quadrilateral is split along its shorter diagonal.
+      std::size_t first = 0;
+      if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
+                            (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
+        first = 1;
+      for (std::size_t j = 1; j + 1 < count; ++j)
+        local.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
+      for (std::size_t j = 0; j < count; ++j) corners.push_back(polygon.vertex[j]);
+    }
+    const std::uint64_t cell = polygons[first_polygon].cell;
+    const std::size_t cell_first = first_polygon;
+    first_polygon = end_polygon;
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    bool crease = sheet_crossing && options.crease_angle_degrees > 0 && corners.size() >= 3;
+    double smallest_cos = 1;
+    for (std::size_t j = 0; crease && j < corners.size(); ++j) {
+      const ContourCrossing& xj = crossings[static_cast<std::size_t>(corners[j])];
+      if (!xj.on_sheet || xj.normal.isZero()) crease = false;
+      for (std::size_t i = 0; crease && i < j; ++i)
+        smallest_cos = std::min(smallest_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(corners[i])].normal)));
+    }
+    crease = crease && smallest_cos < crease_cos;
+    const auto index = grid.index(cell);
+    const Eigen::Vector3d low = grid.origin + grid.h * Eigen::Vector3d(static_cast<double>(index[0]), static_cast<double>(index[1]),
+                                                                     static_cast<double>(index[2]));
+    if (crease) {
+      std::vector<HalfSpace> box;
+      for (int d = 0; d < 3; ++d) {
+        const Eigen::Vector3d e = Eigen::Vector3d::Unit(d);
+        box.emplace_back(e, low(d) + grid.h);
+        box.emplace_back(-e, -low(d));
+      }
+      crease = crease_fan(local, corners, box);
+      if (crease) ++stats.crease_vertices;
+    }
+    if (crease) continue;
+    if (!(sheet_crossing && options.crease_angle_degrees > 0 && smallest_cos < crease_cos)) {
+      faces.insert(faces.end(), local.begin(), local.end());
+      continue;
+    }
+    // The cell's triangles are no disk or its fan folds: each tetrahedron's polygon alone.
+    for (std::size_t q = cell_first; q < first_polygon; ++q) {
+      const ContourPolygon& polygon = polygons[q];
+      const auto count = static_cast<std::size_t>(polygon.count);
+      std::vector<std::array<int, 3>> own;
+      std::size_t first = 0;
+      if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
+                            (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
+        first = 1;
+      for (std::size_t j = 1; j + 1 < count; ++j)
+        own.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
+      std::vector<int> own_corners(polygon.vertex.begin(), polygon.vertex.begin() + polygon.count);
+      std::sort(own_corners.begin(), own_corners.end());
+      bool sharp = true;
+      double own_cos = 1;
+      for (std::size_t j = 0; sharp && j < own_corners.size(); ++j) {
+        const ContourCrossing& xj = crossings[static_cast<std::size_t>(own_corners[j])];
+        if (!xj.on_sheet || xj.normal.isZero()) sharp = false;
+        for (std::size_t i = 0; sharp && i < j; ++i)
+          own_cos = std::min(own_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(own_corners[i])].normal)));
+      }
+      if (sharp && own_cos < crease_cos) {
+        // The tetrahedron's four faces, outward.
+        const auto& tet = kContourKuhnTetrahedra[static_cast<std::size_t>(polygon.tetrahedron)];
+        std::array<Eigen::Vector3d, 4> corner;
+        for (int i = 0; i < 4; ++i) {
+          const int c = tet[static_cast<std::size_t>(i)];
+          corner[static_cast<std::size_t>(i)] = low + grid.h * Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        }
+        std::vector<HalfSpace> faces_of_tet;
+        for (int i = 0; i < 4; ++i) {
+          const Eigen::Vector3d& p0 = corner[static_cast<std::size_t>((i + 1) % 4)];
+          Eigen::Vector3d n = (corner[static_cast<std::size_t>((i + 2) % 4)] - p0).cross(corner[static_cast<std::size_t>((i + 3) % 4)] - p0);
+          if (n.dot(corner[static_cast<std::size_t>(i)] - p0) > 0) n = -n;
+          n.normalize();
+          faces_of_tet.emplace_back(n, n.dot(p0));
+        }
+        if (crease_fan(own, own_corners, faces_of_tet)) {
+          ++stats.crease_vertices;
+          continue;
+        }
+      }
+      faces.insert(faces.end(), own.begin(), own.end());
+    }
   }
+
+  // Edge flips across creases (extended marching cubes): an edge between two crossings on
+  // different sheets whose two triangles are fans around crease vertices x1, x2 becomes the
+  // edge x1 x2, so that the crease runs from crease vertex to crease vertex instead of being
+  // cut at every tetrahedron face. Only where both new triangles face the old ones' way and
+  // x1 x2 is not an edge yet.
+  if (stats.crease_vertices > 0) {
+    auto edge_key = [](int p, int q) { return (static_cast<std::uint64_t>(std::min(p, q)) << 32) | static_cast<std::uint32_t>(std::max(p, q)); };
+    std::unordered_map<std::uint64_t, std::array<int, 2>> edge_faces;
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      for (int j = 0; j < 3; ++j) {
+        auto [it, fresh] = edge_faces.try_emplace(edge_key(faces[f][static_cast<std::size_t>(j)], faces[f][static_cast<std::size_t>((j + 1) % 3)]),
+                                                  std::array<int, 2>{static_cast<int>(f), -1});
+        if (!fresh) it->second[1] = it->second[1] < 0 ? static_cast<int>(f) : -2;
+      }
+    auto normal_of = [&](const std::array<int, 3>& f) {
+      const Eigen::Vector3d& p = result.positions[static_cast<std::size_t>(f[0])];
+      return Eigen::Vector3d((result.positions[static_cast<std::size_t>(f[1])] - p).cross(result.positions[static_cast<std::size_t>(f[2])] - p));
+    };
+    auto replace_face = [&](int p, int q, int from, int to) {
+      auto& pair = edge_faces.at(edge_key(p, q));
+      for (int& f : pair)
+        if (f == from) f = to;
+    };
+    std::vector<std::uint64_t> keys;
+    for (const auto& [k, f] : edge_faces)
+      if (f[1] >= 0) keys.push_back(k);
+    std::sort(keys.begin(), keys.end());
+    for (std::uint64_t k : keys) {
+      const auto u0 = static_cast<int>(k >> 32), v0 = static_cast<int>(k & 0xffffffffu);
+      if (u0 >= n_crossings || v0 >= n_crossings) continue;
+      const std::array<int, 2> pair = edge_faces.at(k);
+      if (pair[1] < 0) continue;
+      const ContourCrossing &xu = crossings[static_cast<std::size_t>(u0)], &xv = crossings[static_cast<std::size_t>(v0)];
+      if (xu.normal.isZero() || xv.normal.isZero() || std::abs(xu.normal.dot(xv.normal)) >= crease_cos) continue;
+      // f1 = (x1, u, v), f2 = (x2, v, u) after rotation.
+      auto rotate_to = [&](int f, int first) {
+        std::array<int, 3> t = faces[static_cast<std::size_t>(f)];
+        while (t[1] != first) std::rotate(t.begin(), t.begin() + 1, t.end());
+        return t;
+      };
+      const int f1 = pair[0], f2 = pair[1];
+      std::array<int, 3> t1 = faces[static_cast<std::size_t>(f1)], t2 = faces[static_cast<std::size_t>(f2)];
+      // Orient: t1 holds u -> v, t2 holds v -> u.
+      int u = u0, v = v0;
+      auto has_directed = [](const std::array<int, 3>& t, int p, int q) {
+        for (int j = 0; j < 3; ++j)
+          if (t[static_cast<std::size_t>(j)] == p && t[static_cast<std::size_t>((j + 1) % 3)] == q) return true;
+        return false;
+      };
+      if (!has_directed(t1, u, v)) std::swap(u, v);
+      if (!has_directed(t1, u, v) || !has_directed(t2, v, u)) continue;
+      t1 = rotate_to(f1, u);
+      t2 = rotate_to(f2, v);
+      const int x1 = t1[0], x2 = t2[0];
+      if (x1 < n_crossings || x2 < n_crossings || x1 == x2 || edge_faces.count(edge_key(x1, x2))) continue;
+      const std::array<int, 3> n1{x1, u, x2}, n2{x1, x2, v};
+      // The quadrilateral's way (area-weighted: one of the old triangles is often a sliver
+      // standing on the crease).
+      const Eigen::Vector3d old_normal = normal_of(t1) + normal_of(t2);
+      const Eigen::Vector3d m1 = normal_of(n1), m2 = normal_of(n2);
+      if (m1.dot(old_normal) <= 0 || m2.dot(old_normal) <= 0) continue;
+      faces[static_cast<std::size_t>(f1)] = n1;
+      faces[static_cast<std::size_t>(f2)] = n2;
+      replace_face(u, x2, f2, f1);
+      replace_face(v, x1, f1, f2);
+      edge_faces.erase(k);
+      edge_faces.emplace(edge_key(x1, x2), std::array<int, 2>{f1, f2});
+      ++stats.crease_flips;
+    }
+  }
+  // A face's part: that of its crossings (crease vertices lie on two sheets and do not vote);
+  // where they differ, the sheet whose normal is nearest the face's.
+  for (const auto& f : faces) {
+    const Eigen::Vector3d& p = result.positions[static_cast<std::size_t>(f[0])];
+    const Eigen::Vector3d normal = (result.positions[static_cast<std::size_t>(f[1])] - p).cross(result.positions[static_cast<std::size_t>(f[2])] - p);
+    int part = -1;
+    double best = -1;
+    for (int v : f) {
+      if (v >= n_crossings) continue;
+      const ContourCrossing& x = crossings[static_cast<std::size_t>(v)];
+      const double alignment = x.normal.isZero() || !(normal.norm() > 0) ? 0 : std::abs(x.normal.dot(normal.normalized()));
+      if (part < 0 || alignment > best) {
+        part = part_of(v);
+        best = alignment;
+      }
+    }
+    result.add_triangle(f[0], f[1], f[2], part < 0 ? part_of(f[0]) : part);
+  }
+  // Crossings inside a cell's disk that a crease fan replaced are used by no face: dropped.
+  std::vector<int> renumber(result.num_vertices(), -1);
+  for (const auto& t : result.triangles)
+    for (int v : t) renumber[static_cast<std::size_t>(v)] = 0;
+  int used = 0;
+  for (std::size_t v = 0; v < renumber.size(); ++v)
+    if (renumber[v] == 0) {
+      renumber[v] = used;
+      const auto to = static_cast<std::size_t>(used++);
+      result.positions[to] = result.positions[v];
+      result.parameters[to] = result.parameters[v];
+      if (!out.extra.empty()) out.extra[to] = out.extra[v];
+      out.source_vertex[to] = out.source_vertex[v];
+    }
+  if (used < static_cast<int>(renumber.size())) {
+    result.positions.resize(static_cast<std::size_t>(used));
+    result.parameters.resize(static_cast<std::size_t>(used));
+    if (!out.extra.empty()) out.extra.resize(static_cast<std::size_t>(used));
+    out.source_vertex.resize(static_cast<std::size_t>(used));
+    for (auto& t : result.triangles)
+      for (int& v : t) v = renumber[static_cast<std::size_t>(v)];
+  }
+  stats.membership_queries = queries;
   measure_trimmed_boundary(result, stats);
   stats.seconds_checks = seconds_since(checks_start);
   if (options.progress) options.progress->end_phase();

@@ -133,6 +133,7 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
   struct Tri {
     std::array<int, 3> v;
     Part part;
+    SupersetSheet sheet;
   };
   std::vector<Tri> tris;
   for (int a = 0; a < 4; ++a)
@@ -142,6 +143,7 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
       for (int d = 0; d < 4; ++d)
         if (d != a && d != b) fixed[static_cast<std::size_t>(k++)] = d;
       const Part part = (fixed[0] == 3 || fixed[1] == 3) ? Part::SweepCap : Part::SweepFace;
+      const SupersetSheet sheet{static_cast<std::uint8_t>((1 << fixed[0]) | (1 << fixed[1])), false};
       for (int end0 = 0; end0 < 2; ++end0)
         for (int end1 = 0; end1 < 2; ++end1) {
           std::array<std::size_t, 4> idx{};
@@ -156,8 +158,8 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
                 return vertex(q);
               };
               const int v00 = at(0, 0), v10 = at(1, 0), v01 = at(0, 1), v11 = at(1, 1);
-              tris.push_back({{v00, v10, v11}, part});
-              tris.push_back({{v00, v11, v01}, part});
+              tris.push_back({{v00, v10, v11}, part, sheet});
+              tris.push_back({{v00, v11, v01}, part, sheet});
               ++(part == Part::SweepCap ? stats.cap_face_triangles : stats.edge_sweep_triangles);
               ++(part == Part::SweepCap ? stats.cap_face_triangles : stats.edge_sweep_triangles);
             }
@@ -170,7 +172,10 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
     out.times.push_back(params[v][3]);
     out.patches.push_back(patch_index);
   }
-  for (const Tri& t : tris) out.mesh.add_triangle(base + t.v[0], base + t.v[1], base + t.v[2], t.part);
+  for (const Tri& t : tris) {
+    out.mesh.add_triangle(base + t.v[0], base + t.v[1], base + t.v[2], t.part);
+    out.sheets.push_back(t.sheet);
+  }
   stats.seconds_faces += seconds_since(faces_start);
 
   // The folds of the eight 3-faces (Joy–Duchaineau's implicit surface of each trivariate solid).
@@ -208,7 +213,10 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
         out.times.push_back(p[3]);
         out.patches.push_back(patch_index);
       }
-      for (const auto& t : z.mesh.triangles) out.mesh.add_triangle(zbase + t[0], zbase + t[1], zbase + t[2], part);
+      for (const auto& t : z.mesh.triangles) {
+        out.mesh.add_triangle(zbase + t[0], zbase + t[1], zbase + t[2], part);
+        out.sheets.push_back({static_cast<std::uint8_t>(1 << c), true});
+      }
       (c == 3 ? stats.cap_fold_triangles : stats.face_sweep_fold_triangles) += static_cast<std::int64_t>(z.mesh.num_triangles());
     }
   stats.seconds_folds += seconds_since(folds_start);
@@ -231,7 +239,10 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
     out.times.push_back(r.t[v]);
     out.patches.push_back(patch_index);
   }
-  for (const auto& t : r.mesh.triangles) out.mesh.add_triangle(rbase + t[0], rbase + t[1], rbase + t[2], Part::SweepRankDeficient);
+  for (const auto& t : r.mesh.triangles) {
+    out.mesh.add_triangle(rbase + t[0], rbase + t[1], rbase + t[2], Part::SweepRankDeficient);
+    out.sheets.push_back({0, false});
+  }
   stats.rank_deficient_triangles += static_cast<std::int64_t>(r.mesh.num_triangles());
   stats.seconds_rank_deficient += seconds_since(rank_start);
 }
@@ -324,7 +335,49 @@ SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, con
   contouring.cell_size = options.contour_cell_factor * options.tolerance;
   contouring.superset_error = std::min(0.25, 2 * options.tolerance);
   if (!contouring.progress) contouring.progress = options.progress;
-  return finish(contour_image_boundary(superset.mesh, superset.times, inside, contouring), EnvelopeTrimming::Contouring);
+  // Vertices onto the true sheets: Newton from the (u, v, w, t) interpolated in the superset
+  // triangle, on the sheet's own equations.
+  const SupersetSheetCrossing exact = [&](std::size_t triangle, const Eigen::Vector3d& barycentric, double lambda,
+                                          const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::optional<SheetCrossing> {
+    const auto& tri = superset.mesh.triangles[triangle];
+    std::array<double, 4> p{};
+    for (int j = 0; j < 3; ++j) {
+      const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
+      for (int k = 0; k < 3; ++k) p[static_cast<std::size_t>(k)] += barycentric[j] * superset.mesh.parameters[v][k];
+      p[3] += barycentric[j] * superset.times[v];
+    }
+    // Fixed parameters exactly at the first corner's value (a domain bound).
+    const SupersetSheet& sheet = superset.sheets[triangle];
+    const auto v0 = static_cast<std::size_t>(tri[0]);
+    for (int d = 0; d < 4; ++d)
+      if ((sheet.fixed >> d) & 1) p[static_cast<std::size_t>(d)] = d < 3 ? superset.mesh.parameters[v0][d] : superset.times[v0];
+    const auto& s = patches[static_cast<std::size_t>(superset.patches[v0])];
+    const auto c = sheet_line_crossing<4>(s, sheet, p, lambda, a, b);
+    if (!c) return std::nullopt;
+    SheetCrossing x;
+    x.lambda = c->lambda;
+    x.parameters = Eigen::Vector3d(c->parameter[0], c->parameter[1], c->parameter[2]);
+    x.extra = c->parameter[3];
+    x.normal = c->normal;
+    return x;
+  };
+  // One number per sheet: the patch, the fixed parameters and the bounds they are fixed at, fold.
+  std::vector<int> sheet_of_triangle;
+  sheet_of_triangle.reserve(superset.sheets.size());
+  for (std::size_t t = 0; t < superset.sheets.size(); ++t) {
+    const SupersetSheet& sheet = superset.sheets[t];
+    const auto v0 = static_cast<std::size_t>(superset.mesh.triangles[t][0]);
+    const auto& s = patches[static_cast<std::size_t>(superset.patches[v0])];
+    int at_max = 0;
+    for (int d = 0; d < 4; ++d)
+      if ((sheet.fixed >> d) & 1) {
+        const double value = d < 3 ? superset.mesh.parameters[v0][d] : superset.times[v0];
+        if (value > 0.5 * (s.domain_min(d) + s.domain_max(d))) at_max |= 1 << d;
+      }
+    sheet_of_triangle.push_back(((superset.patches[v0] * 16 + sheet.fixed) * 16 + at_max) * 2 + (sheet.fold ? 1 : 0));
+  }
+  return finish(contour_image_boundary(superset.mesh, superset.times, inside, contouring, exact, sheet_of_triangle),
+                EnvelopeTrimming::Contouring);
 }
 
 }  // namespace volspline

@@ -15,9 +15,21 @@
 // function at a regular value, each triangle inside one tetrahedron. Its vertices are where a
 // grid edge from an inside corner to an outside one crosses the superset (the crossing between
 // the last inside and first outside stretch, found by membership tests between crossings), so
-// they carry the sheet's source and parameters. docs/envelopes.md, "Trimming by contouring".
+// they carry the sheet's source and parameters. Given the sheets' equations (`sheet_crossing`), each
+// vertex is moved onto the true sheet by Newton (extract/sheet_line_crossing.h) and checked
+// against the bracket the membership tests left; where no sheet the superset holds near the edge
+// crosses inside that bracket, the crossing is bisected with membership tests and the nearby
+// sheets are tried again there. Sharp creases (normals of a tetrahedron's vertices more than
+// `crease_angle_degrees` apart) get a vertex where the tangent planes meet (the quadric of
+// dual contouring, Ju et al. 2002) and the edges across the crease are flipped to join those
+// vertices (extended marching cubes, Kobbelt et al. 2001). docs/envelopes.md, "Trimming by
+// contouring".
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "volspline/core/progress.h"
 #include "volspline/extract/superset_trimming.h"
@@ -37,16 +49,39 @@ struct ImageContouringOptions {
   int bisection_steps = 12;
   /// Budget of grid cells (InvalidInput beyond it: choose a larger cell size).
   std::int64_t max_cells = 20000000;
+  /// Tetrahedra whose vertices' sheet normals differ by more than this get a crease vertex
+  /// (only with sheet equations; 0 turns it off).
+  double crease_angle_degrees = 30;
   Progress* progress = nullptr;
 };
 
+/// A vertex on the sheet under a superset triangle: where the segment a + lambda (b - a) crosses
+/// it, the sheet's parameters and extra parameter there, and its unit normal (zero if unknown).
+struct SheetCrossing {
+  double lambda = 0;
+  Eigen::Vector3d parameters = Eigen::Vector3d::Zero();
+  double extra = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+/// The crossing of [a, b] with the sheet that superset triangle `triangle` approximates, from
+/// the point at `barycentric` in it (at `lambda` on the segment); nothing if the sheet does not
+/// cross the segment there. Called from several threads at once.
+using SupersetSheetCrossing = std::function<std::optional<SheetCrossing>(std::size_t triangle, const Eigen::Vector3d& barycentric,
+                                                                         double lambda, const Eigen::Vector3d& a,
+                                                                         const Eigen::Vector3d& b)>;
+
 /// The boundary of S, outward, from the superset of it and a membership test for S (called
 /// from several threads at once; undecided counts as inside). Output as trim_superset: parts,
-/// parameters and `extra` interpolated in the superset triangle each vertex lies on,
-/// source_vertex its first corner, stats measured by measure_trimmed_boundary.
+/// parameters and `extra` from the sheet (`sheet_crossing`) or interpolated in the superset triangle each
+/// vertex lies on, source_vertex its first corner, stats measured by measure_trimmed_boundary.
 /// \throw InvalidInput for a malformed superset, `extra` not one per vertex, options out of
-/// range or a grid beyond max_cells.
+/// range or a grid beyond max_cells. `sheet_of_triangle` (optional, with sheet_crossing): per
+/// superset triangle a number shared by the triangles of one sheet; each sheet within
+/// superset_error of a crossed edge is then tried from its nearest triangle, also where its
+/// chords miss the edge (\throw InvalidInput unless one per triangle).
 TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::vector<double>& extra,
-                                       const ImageMembershipTest& inside, const ImageContouringOptions& options = {});
+                                       const ImageMembershipTest& inside, const ImageContouringOptions& options = {},
+                                       const SupersetSheetCrossing& sheet_crossing = {},
+                                       const std::vector<int>& sheet_of_triangle = {});
 
 }  // namespace volspline

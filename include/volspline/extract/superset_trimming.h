@@ -49,10 +49,13 @@ struct SupersetTrimmingStats {
   std::string open_at;
   double seconds_refine = 0, seconds_classify = 0, seconds_checks = 0;
   /// Contouring only (extract/image_contouring.h): the grid spacing (absolute), grid cells and
-  /// corners examined, and grid edges where the boundary was found without a superset sheet
-  /// crossing them (placed by bisection instead).
+  /// corners examined, grid edges where the boundary was found without a superset sheet
+  /// crossing them (placed by bisection instead), crossings placed on a sheet by Newton, those
+  /// found on a sheet only after bisection (the superset's triangles missed the crossing), and
+  /// crease vertices and edge flips.
   double cell_size = 0;
-  std::int64_t grid_cells = 0, grid_corners = 0, crossings_off_superset = 0;
+  std::int64_t grid_cells = 0, grid_corners = 0, crossings_off_superset = 0, crossings_on_sheets = 0,
+               crossings_after_bisection = 0, crease_vertices = 0, crease_flips = 0;
 };
 
 /// Where on the true surface a point of the superset is: for superset triangle `triangle` and

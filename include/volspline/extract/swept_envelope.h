@@ -33,6 +33,7 @@
 #include "volspline/core/progress.h"
 #include "volspline/extract/image_contouring.h"
 #include "volspline/extract/jacobian_zero_surface.h"
+#include "volspline/extract/sheet_line_crossing.h"
 #include "volspline/extract/superset_trimming.h"
 #include "volspline/mesh/triangle_mesh.h"
 #include "volspline/spline/tensor_spline.h"
@@ -60,7 +61,7 @@ struct SweptEnvelopeOptions {
   SupersetTrimmingOptions trimming;
   /// Contouring: grid spacing in multiples of `tolerance` (the other contouring options as
   /// `contouring` says; its cell_size and superset_error are set from tolerance).
-  double contour_cell_factor = 4;
+  double contour_cell_factor = 3;
   ImageContouringOptions contouring;
   Progress* progress = nullptr;
 };
@@ -92,6 +93,10 @@ struct SweptEnvelope {
   std::vector<double> times;
   /// Which generator patch each vertex comes from.
   std::vector<int> patches;
+  /// The superset only (empty once trimmed): per triangle, the sheet it approximates (a square:
+  /// two fixed parameters; a fold of a 3-face: one fixed and fold; the rank-deficient set: none
+  /// fixed), for Newton onto the true sheet (extract/sheet_line_crossing.h).
+  std::vector<SupersetSheet> sheets;
   SweptEnvelopeStats stats;
 };
 
