@@ -117,8 +117,10 @@ TEST(LocalOrigin, DerivativesAndPositionsDoNotDependOnThePlacement) {
 }
 
 TEST(LocalOrigin, MassPropertiesDoNotDependOnThePlacement) {
+  // (Three of the offsets: adaptive integration of the rational solids is the slowest part.)
+  const std::vector<Eigen::Vector3d> some{{1e12, -1e12, 1e12}, {-1e15, -1e15, -1e15}, {0, -1e12, 1e15}};
   for (const NamedSolid& s : solids()) {
-    for (const Eigen::Vector3d& offset : offsets()) {
+    for (const Eigen::Vector3d& offset : some) {
       const auto [placed, at_zero] = placed_and_reference(s.volume, offset);
       // A rational solid is integrated adaptively: a looser target keeps the test short; both
       // runs make the same refinement decisions on the same (shifted) solid.
