@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "volspline/core/coordinate_range.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
@@ -52,7 +53,7 @@ double number(const json& value, const std::string& path, const std::string& wha
 // lengths at least 2^-200. A primitive's value is a polynomial of degree up to 4 in them (the
 // torus), which stays a normal double there; beyond, a blend of spheres of radius 1e300 or 1e-200
 // meshed to nothing with exit 0.
-constexpr double kMaxSceneCoordinate = 0x1p200, kMinSceneLength = 0x1p-200;
+constexpr double kMaxSceneCoordinate = kMaxCoordinate, kMinSceneLength = kMinExtent;  // core/coordinate_range.h
 
 double positive(const json& object, const char* key, const std::string& path, const std::string& what) {
   const std::string at = key_path(path, key);
