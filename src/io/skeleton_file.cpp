@@ -115,7 +115,7 @@ SkeletonFalloff read_falloff(const json& value, const std::string& path) {
     falloff.kind = SkeletonFalloff::Kind::InverseSquare;
     if (value.contains("scale")) {
       falloff.scale = number(value["scale"], json_key_path(path, "scale"));
-      check_length_range(falloff.scale, json_key_path(path, "scale"), "a scale", "docs/skeleton-files.md");
+      check_length_range(falloff.scale, json_key_path(path, "scale"), "a scale", "docs/formats.md");
     }
   } else if (kind == "polynomial") {
     allow_keys(value, path, {"kind", "coefficients", "radius"});
@@ -124,7 +124,7 @@ SkeletonFalloff read_falloff(const json& value, const std::string& path) {
     falloff.coefficients = numbers(member(value, "coefficients", path, "a_0, a_1, ... of G(d) = Σ a_k d^k"), at,
                                    "an array of numbers (a_0, a_1, ...)");
     falloff.radius = number(member(value, "radius", path, "the distance beyond which G is 0"), json_key_path(path, "radius"));
-    check_length_range(falloff.radius, json_key_path(path, "radius"), "a radius", "docs/skeleton-files.md");
+    check_length_range(falloff.radius, json_key_path(path, "radius"), "a radius", "docs/formats.md");
   } else {
     fail("\"inverse_square\" or \"polynomial\"", kind, kind_path);
   }
@@ -156,7 +156,7 @@ SkeletonElement read_element(const json& value, const std::string& path) {
         check_point_coordinate_range(
             element.points.front().data(), element.points.size(), 3, 3,
             [&](std::size_t i, std::size_t c) { return json_index_path(json_index_path(at, i), c); }, at, "points",
-            "docs/skeleton-files.md");
+            "docs/formats.md");
       break;
     }
     case Kind::Curve:
@@ -170,7 +170,7 @@ SkeletonElement read_element(const json& value, const std::string& path) {
             element.curve->points().data(), static_cast<std::size_t>(element.curve->num_control_points_total()),
             static_cast<std::size_t>(element.curve->dimension()), static_cast<std::size_t>(element.curve->dimension()),
             [&](std::size_t i, std::size_t c) { return json_index_path(json_index_path(at, i), c); }, at, "control points",
-            "docs/skeleton-files.md", [&](std::size_t i) { return !w.empty() && w[i] == 0.0; });
+            "docs/formats.md", [&](std::size_t i) { return !w.empty() && w[i] == 0.0; });
       }
       break;
     case Kind::Ellipsoid:
@@ -182,10 +182,10 @@ SkeletonElement read_element(const json& value, const std::string& path) {
       check_point_coordinate_range(
           element.centre.data(), 1, 3, 3,
           [&](std::size_t, std::size_t c) { return json_index_path(json_key_path(path, "centre"), c); }, json_key_path(path, "centre"),
-          "points", "docs/skeleton-files.md");
+          "points", "docs/formats.md");
       for (int k = 0; k < 3; ++k)
         check_length_range(element.semi_axes[k], json_index_path(json_key_path(path, "semi_axes"), static_cast<std::size_t>(k)),
-                           "a semi-axis", "docs/skeleton-files.md");
+                           "a semi-axis", "docs/formats.md");
       if (value.contains("rotation")) element.rotation = read_rotation(value["rotation"], json_key_path(path, "rotation"));
       break;
   }

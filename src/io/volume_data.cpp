@@ -94,7 +94,7 @@ void validate_volume_data(const VolumeData& data, const std::string& source) {
     check_point_coordinate_range(
         data.points.front().data(), data.size(), 3, 3,
         [&](std::size_t i, std::size_t c) { return source + ": point " + std::to_string(i) + ", " + std::string(1, "xyz"[c]); }, source,
-        "points", "docs/fitting.md");
+        "points", "docs/formats.md");
   }
 }
 

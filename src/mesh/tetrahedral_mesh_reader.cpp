@@ -54,7 +54,7 @@ TetrahedralMesh checked(TetrahedralMesh mesh, const Origins& origins) {
           const std::string index = origins.point_unit == "point" ? "" : " (point " + std::to_string(i) + ")";
           return origins.points_file + ": " + origins.point_unit + place + index + ", " + std::string(1, "xyz"[c]);
         },
-        origins.points_file, "points", "docs/tetrahedral-domains.md");
+        origins.points_file, "points", "docs/formats.md");
   }
   try {
     orient_positively(mesh);
