@@ -60,12 +60,12 @@ std::vector<RangeReader> range_readers() {
     return std::string(prefix) + "1 2 3\n" + prefix + "1 2 4\n" + prefix + "1 3 4\n" + prefix + "2 3 4\n";
   };
   std::vector<RangeReader> readers;
-  readers.push_back({"obj", [&](const Corners& c) {
+  readers.push_back({"obj", [faces](const Corners& c) {
                        std::string t;
                        for (const auto& p : c) t += "v " + xyz_text(p) + "\n";
                        return std::vector<std::pair<std::string, std::string>>{{"in.obj", t + faces("f ")}};
                      }, "in.obj", mesh_read, "in.obj: vertex 2 of 4, x"});
-  readers.push_back({"ply", [&](const Corners& c) {
+  readers.push_back({"ply", [](const Corners& c) {
                        std::string t = "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
                                        "element face 4\nproperty list uchar int vertex_indices\nend_header\n";
                        for (const auto& p : c) t += xyz_text(p) + "\n";
