@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "volspline/core/coordinate_range.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
@@ -47,10 +48,19 @@ double number(const json& value, const std::string& path, const std::string& wha
   return x;
 }
 
+// The range of coordinates of models (io/coordinate_range.h, docs/model-format.md "Range of
+// coordinates"; that layer is below this one): positions and lengths of magnitude at most 2^200,
+// lengths at least 2^-200. A primitive's value is a polynomial of degree up to 4 in them (the
+// torus), which stays a normal double there; beyond, a blend of spheres of radius 1e300 or 1e-200
+// meshed to nothing with exit 0.
+constexpr double kMaxSceneCoordinate = kMaxCoordinate, kMinSceneLength = kMinExtent;  // core/coordinate_range.h
+
 double positive(const json& object, const char* key, const std::string& path, const std::string& what) {
   const std::string at = key_path(path, key);
   const double x = number(required(object, key, path, what), at, what);
   if (!(x > 0.0)) fail(what, object.at(key), at);
+  if (x > kMaxSceneCoordinate || x < kMinSceneLength)
+    fail(what + " between 2^-200 and 2^200 (about 6.2e-61 and 1.6e60; docs/scene-format.md)", object.at(key), at);
   return x;
 }
 
@@ -59,7 +69,11 @@ Eigen::Vector3d point(const json& object, const char* key, const std::string& pa
   const std::string at = key_path(path, key);
   if (!value.is_array() || value.size() != 3) fail(what + " (an array of 3 numbers)", value, at);
   Eigen::Vector3d p;
-  for (std::size_t i = 0; i < 3; ++i) p[static_cast<int>(i)] = number(value[i], index_path(at, i));
+  for (std::size_t i = 0; i < 3; ++i) {
+    p[static_cast<int>(i)] = number(value[i], index_path(at, i));
+    if (std::abs(p[static_cast<int>(i)]) > kMaxSceneCoordinate)
+      fail("a coordinate of magnitude at most 2^200 (about 1.6e60; docs/scene-format.md)", value[i], index_path(at, i));
+  }
   return p;
 }
 
@@ -116,7 +130,9 @@ SceneNode read_primitive(const std::string& kind, const json& p, const std::stri
     q.origin = point(p, "center", at, "the centre");
     q.radii = point(p, "radii", at, "the semi-axes along x, y, z");
     for (int i = 0; i < 3; ++i)
-      if (!(q.radii[i] > 0.0)) fail("a positive semi-axis", p["radii"][static_cast<std::size_t>(i)], index_path(key_path(at, "radii"), static_cast<std::size_t>(i)));
+      if (!(q.radii[i] >= kMinSceneLength))
+        fail(q.radii[i] > 0.0 ? "a semi-axis of at least 2^-200 (about 6.2e-61; docs/scene-format.md)" : "a positive semi-axis",
+             p["radii"][static_cast<std::size_t>(i)], index_path(key_path(at, "radii"), static_cast<std::size_t>(i)));
     if (p.contains("rotation")) q.rotation = rotation(p["rotation"], key_path(at, "rotation"));
   } else if (kind == "cylinder") {
     check_keys(p, at, {"point", "axis", "radius"});

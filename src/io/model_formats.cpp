@@ -4,9 +4,11 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <type_traits>
 #include <vector>
 
+#include "volspline/core/coordinate_range.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
@@ -85,36 +87,13 @@ std::string coordinate_location(const std::string& path, std::size_t i, std::siz
 }
 
 // `count` points of `dimension` numbers at `points` (point i's coordinates at points + i * stride),
-// those with skip(i) true being directions; `path` names the array ("control_points").
-template <class Skip>
-void check_coordinate_array(const double* points, std::size_t count, std::size_t dimension, std::size_t stride, Skip skip,
-                  const std::string& path) {
-  double extent = 0.0;
-  std::vector<double> lo(dimension, HUGE_VAL), hi(dimension, -HUGE_VAL);
-  for (std::size_t i = 0; i < count; ++i) {
-    for (std::size_t c = 0; c < dimension; ++c) {
-      const double x = points[i * stride + c];
-      if (std::abs(x) > kMaxModelCoordinate) {
-        throw InvalidInput("expected a coordinate of magnitude at most 2^200 (about 1.6e60), got " + format_double(x) +
-                               ": the Jacobian determinant and the moments of inertia grow like the cube and the fifth "
-                               "power of the size and would overflow; scale the model (docs/model-format.md, \"Range of "
-                               "coordinates\")",
-                           coordinate_location(path, i, c));
-      }
-      if (skip(i)) continue;
-      lo[c] = std::min(lo[c], x);
-      hi[c] = std::max(hi[c], x);
-    }
-  }
-  for (std::size_t c = 0; c < dimension; ++c)
-    if (lo[c] <= hi[c]) extent = std::max(extent, hi[c] - lo[c]);
-  if (extent > 0.0 && extent < kMinModelExtent) {
-    throw InvalidInput("expected control points spanning at least 2^-200 (about 6.2e-61) where they are not all one point, got " +
-                           format_double(extent) +
-                           " (the largest edge of their bounding box): the Jacobian determinant grows like the cube of the "
-                           "size and would underflow; scale the model (docs/model-format.md, \"Range of coordinates\")",
-                       path);
-  }
+// those with skip(i) true being directions; `path` names the array ("control_points"). The rule
+// is core/coordinate_range.h's, located at the number's JSON path.
+void check_coordinate_array(const double* points, std::size_t count, std::size_t dimension, std::size_t stride,
+                            const std::function<bool(std::size_t)>& skip, const std::string& path) {
+  check_point_coordinate_range(
+      points, count, dimension, stride, [&](std::size_t i, std::size_t c) { return coordinate_location(path, i, c); }, path,
+      "control points", "docs/model-format.md", skip);
 }
 
 template <int D>

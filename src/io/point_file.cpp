@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "volspline/core/coordinate_range.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 
@@ -39,6 +40,7 @@ bool line_numbers(std::string_view line, std::vector<double>& out) {
 
 std::vector<Eigen::Vector3d> parse_points(std::string_view text, const std::string& source_name) {
   std::vector<Eigen::Vector3d> points;
+  std::vector<std::size_t> lines;  // of each point, for the range check's message
   std::vector<double> numbers;
   std::size_t line_number = 0, start = 0;
   bool first_content = true;
@@ -64,9 +66,15 @@ std::vector<Eigen::Vector3d> parse_points(std::string_view text, const std::stri
                          source_name + ": line " + std::to_string(line_number));
     }
     points.emplace_back(numbers[0], numbers[1], numbers[2]);
+    lines.push_back(line_number);
     if (end == text.size()) break;
   }
   if (points.empty()) throw InvalidInput("expected at least one point (a line x, y, z), got none", source_name);
+  // The range of coordinates (core/coordinate_range.h), located at the line.
+  check_point_coordinate_range(
+      points.front().data(), points.size(), 3, 3,
+      [&](std::size_t i, std::size_t c) { return source_name + ": line " + std::to_string(lines[i]) + ", " + std::string(1, "xyz"[c]); },
+      source_name, "points", "docs/formats.md");
   return points;
 }
 

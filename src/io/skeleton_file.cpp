@@ -14,6 +14,7 @@
 
 #include "model_curve.h"
 #include "model_json_support.h"
+#include "volspline/core/coordinate_range.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/strict_json.h"
@@ -112,7 +113,10 @@ SkeletonFalloff read_falloff(const json& value, const std::string& path) {
   if (kind == "inverse_square") {
     allow_keys(value, path, {"kind", "scale"});
     falloff.kind = SkeletonFalloff::Kind::InverseSquare;
-    if (value.contains("scale")) falloff.scale = number(value["scale"], json_key_path(path, "scale"));
+    if (value.contains("scale")) {
+      falloff.scale = number(value["scale"], json_key_path(path, "scale"));
+      check_length_range(falloff.scale, json_key_path(path, "scale"), "a scale", "docs/formats.md");
+    }
   } else if (kind == "polynomial") {
     allow_keys(value, path, {"kind", "coefficients", "radius"});
     falloff.kind = SkeletonFalloff::Kind::Polynomial;
@@ -120,6 +124,7 @@ SkeletonFalloff read_falloff(const json& value, const std::string& path) {
     falloff.coefficients = numbers(member(value, "coefficients", path, "a_0, a_1, ... of G(d) = Σ a_k d^k"), at,
                                    "an array of numbers (a_0, a_1, ...)");
     falloff.radius = number(member(value, "radius", path, "the distance beyond which G is 0"), json_key_path(path, "radius"));
+    check_length_range(falloff.radius, json_key_path(path, "radius"), "a radius", "docs/formats.md");
   } else {
     fail("\"inverse_square\" or \"polynomial\"", kind, kind_path);
   }
@@ -147,12 +152,26 @@ SkeletonElement read_element(const json& value, const std::string& path) {
       const json& points = member(value, "points", path, "an array of points [x, y, z]");
       if (!points.is_array()) fail("an array of points [x, y, z]", points, at);
       for (std::size_t i = 0; i < points.size(); ++i) element.points.push_back(vector3(points[i], json_index_path(at, i), "a point"));
+      if (!element.points.empty())
+        check_point_coordinate_range(
+            element.points.front().data(), element.points.size(), 3, 3,
+            [&](std::size_t i, std::size_t c) { return json_index_path(json_index_path(at, i), c); }, at, "points",
+            "docs/formats.md");
       break;
     }
     case Kind::Curve:
       keys.push_back("curve");
       allow_keys(value, path, keys);
       element.curve = read_model_curve(member(value, "curve", path, "a curve object as in model files"), json_key_path(path, "curve"));
+      {
+        const std::string at = json_key_path(json_key_path(path, "curve"), "control_points");
+        const std::vector<double>& w = element.curve->weights();
+        check_point_coordinate_range(
+            element.curve->points().data(), static_cast<std::size_t>(element.curve->num_control_points_total()),
+            static_cast<std::size_t>(element.curve->dimension()), static_cast<std::size_t>(element.curve->dimension()),
+            [&](std::size_t i, std::size_t c) { return json_index_path(json_index_path(at, i), c); }, at, "control points",
+            "docs/formats.md", [&](std::size_t i) { return !w.empty() && w[i] == 0.0; });
+      }
       break;
     case Kind::Ellipsoid:
       keys.insert(keys.end(), {"centre", "semi_axes", "rotation"});
@@ -160,6 +179,13 @@ SkeletonElement read_element(const json& value, const std::string& path) {
       element.centre = vector3(member(value, "centre", path, "the centre [x, y, z]"), json_key_path(path, "centre"), "the centre");
       element.semi_axes = vector3(member(value, "semi_axes", path, "the three semi-axes"), json_key_path(path, "semi_axes"),
                                   "the semi-axes along the rotation's columns");
+      check_point_coordinate_range(
+          element.centre.data(), 1, 3, 3,
+          [&](std::size_t, std::size_t c) { return json_index_path(json_key_path(path, "centre"), c); }, json_key_path(path, "centre"),
+          "points", "docs/formats.md");
+      for (int k = 0; k < 3; ++k)
+        check_length_range(element.semi_axes[k], json_index_path(json_key_path(path, "semi_axes"), static_cast<std::size_t>(k)),
+                           "a semi-axis", "docs/formats.md");
       if (value.contains("rotation")) element.rotation = read_rotation(value["rotation"], json_key_path(path, "rotation"));
       break;
   }

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "text_numbers.h"
+#include "volspline/core/coordinate_range.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 #include "volume_data_vtk.h"
@@ -87,6 +88,13 @@ void validate_volume_data(const VolumeData& data, const std::string& source) {
       if (!std::isfinite(data.attributes(static_cast<Eigen::Index>(i), a)))
         throw InvalidInput("attribute '" + data.attribute_names[static_cast<std::size_t>(a)] + "' is not a finite number",
                            source + ": point " + std::to_string(i));
+  }
+  // The range of coordinates (core/coordinate_range.h); attributes are any finite numbers.
+  if (!data.points.empty()) {
+    check_point_coordinate_range(
+        data.points.front().data(), data.size(), 3, 3,
+        [&](std::size_t i, std::size_t c) { return source + ": point " + std::to_string(i) + ", " + std::string(1, "xyz"[c]); }, source,
+        "points", "docs/formats.md");
   }
 }
 

@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "volspline/core/coordinate_range.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
 #include "volspline/io/atomic_file.h"
@@ -727,19 +728,33 @@ TriangleMesh parse_ascii_stl(std::string_view text, const std::string& source) {
   return mesh;
 }
 
+// The range of coordinates (core/coordinate_range.h), checked on the mesh a parser made, at the
+// vertex (numbered from 1, as OBJ numbers them) and its coordinate.
+TriangleMesh mesh_in_coordinate_range(TriangleMesh mesh, const std::string& source) {
+  const std::size_t n = mesh.positions.size();
+  if (n == 0) return mesh;
+  check_point_coordinate_range(
+      mesh.positions.front().data(), n, 3, 3,
+      [&](std::size_t i, std::size_t c) {
+        return source + ": vertex " + std::to_string(i + 1) + " of " + std::to_string(n) + ", " + std::string(1, "xyz"[c]);
+      },
+      source, "vertices", "docs/formats.md");
+  return mesh;
+}
+
 }  // namespace
 
-TriangleMesh parse_obj(std::string_view bytes, const std::string& source) { return parse_obj_text(bytes, source); }
+TriangleMesh parse_obj(std::string_view bytes, const std::string& source) { return mesh_in_coordinate_range(parse_obj_text(bytes, source), source); }
 
-TriangleMesh parse_ply(std::string_view bytes, const std::string& source) { return parse_ply_bytes(bytes, source); }
+TriangleMesh parse_ply(std::string_view bytes, const std::string& source) { return mesh_in_coordinate_range(parse_ply_bytes(bytes, source), source); }
 
 TriangleMesh parse_stl(std::string_view bytes, const std::string& source) {
   std::size_t first = 0;
   while (first < bytes.size() && (is_space(bytes[first]) || bytes[first] == '\n')) ++first;
   const bool says_solid = bytes.substr(first, 5) == "solid";
   const bool binary_size = bytes.size() >= 84 && bytes.size() == 84 + 50ull * load<std::uint32_t>(bytes.data() + 80, false);
-  if (says_solid && !binary_size) return parse_ascii_stl(bytes, source);
-  return parse_binary_stl(bytes, source);
+  if (says_solid && !binary_size) return mesh_in_coordinate_range(parse_ascii_stl(bytes, source), source);
+  return mesh_in_coordinate_range(parse_binary_stl(bytes, source), source);
 }
 
 TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format, const std::string& source) {
@@ -817,7 +832,7 @@ TriangleMesh parse_off(std::string_view bytes, const std::string& source) {
     for (long long k = 1; k + 1 < corners; ++k)
       mesh.add_triangle(index[0], index[static_cast<std::size_t>(k)], index[static_cast<std::size_t>(k + 1)], kUnnamedPartNumber);
   }
-  return mesh;
+  return mesh_in_coordinate_range(std::move(mesh), source);
 }
 
 TriangleMesh read_mesh(const std::filesystem::path& path) {

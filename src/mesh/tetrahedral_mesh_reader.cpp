@@ -25,6 +25,7 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include "vtk_reader_errors.h"
+#include "volspline/core/coordinate_range.h"
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 
@@ -44,6 +45,17 @@ struct Origins {
 };
 
 TetrahedralMesh checked(TetrahedralMesh mesh, const Origins& origins) {
+  // The range of coordinates (core/coordinate_range.h), located at the point's place in its file.
+  if (!mesh.points.empty()) {
+    check_point_coordinate_range(
+        mesh.points.front().data(), mesh.points.size(), 3, 3,
+        [&](std::size_t i, std::size_t c) {
+          const std::string place = i < origins.point_place.size() ? " " + std::to_string(origins.point_place[i]) : "";
+          const std::string index = origins.point_unit == "point" ? "" : " (point " + std::to_string(i) + ")";
+          return origins.points_file + ": " + origins.point_unit + place + index + ", " + std::string(1, "xyz"[c]);
+        },
+        origins.points_file, "points", "docs/formats.md");
+  }
   try {
     orient_positively(mesh);
     validate_tetrahedral_mesh(mesh);

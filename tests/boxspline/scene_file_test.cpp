@@ -54,6 +54,19 @@ TEST(SceneFile, PrimitivesAndPlacement) {
   EXPECT_NEAR(scene_value(s.root, Eigen::Vector3d(1.5, 7, 3)), 0.0, 1e-15);
 }
 
+// Extreme coordinates (issue 16): the range of models (docs/model-format.md) holds for scenes
+// too; beyond it a blend of huge or tiny spheres meshed to nothing with exit 0.
+TEST(SceneFile, CoordinatesAndLengthsOutsideTheRangeAreRefused) {
+  const std::string sphere = R"({"sphere": {"center": [0, 0, 0], "radius": 1}})";
+  EXPECT_NE(scene_error_of(scene_with_root(R"({"sphere": {"center": [1e300, 0, 0], "radius": 1}})")).find("scene.json: root.sphere.center[0]: expected a coordinate of magnitude at most 2^200"), std::string::npos);
+  EXPECT_NE(scene_error_of(scene_with_root(R"({"sphere": {"center": [0, 0, 0], "radius": 5e299}})")).find("scene.json: root.sphere.radius: expected a positive radius between 2^-200 and 2^200"), std::string::npos);
+  EXPECT_NE(scene_error_of(scene_with_root(R"({"torus": {"center": [0, 0, 0], "axis": [0, 0, 1], "major": 1, "minor": 1e-201}})")).find("root.torus.minor: expected a positive minor radius between 2^-200 and 2^200"), std::string::npos);
+  EXPECT_NE(scene_error_of(scene_with_root(R"({"ellipsoid": {"center": [0, 0, 0], "radii": [1, 1e-250, 1]}})")).find("root.ellipsoid.radii[1]: expected a semi-axis of at least 2^-200"), std::string::npos);
+  EXPECT_NE(scene_error_of(scene_with_root(sphere, "1e-201")).find("scene.json: spacing: expected a positive lattice spacing between 2^-200 and 2^200"), std::string::npos);
+  EXPECT_NE(scene_error_of(scene_with_root(sphere, "0.5", R"({"min": [-1e300, 0, 0], "max": [1, 1, 1]})")).find("scene.json: box.min[0]: expected a coordinate of magnitude at most 2^200"), std::string::npos);
+  EXPECT_EQ(scene_error_of(scene_with_root(R"({"sphere": {"center": [1e60, 0, 0], "radius": 1e-60}})")), "(no error)");
+}
+
 TEST(SceneFile, ErrorsNameFilePathAndExpectation) {
   EXPECT_EQ(scene_error_of(scene_with_root(R"({"cube": {"size": 1}})")),
             "scene.json: root.cube: unknown node \"cube\": expected one of sphere, ellipsoid, cylinder, cone, torus, plane, "

@@ -56,7 +56,7 @@ TEST(FarFromOriginCli, EveryCommandGivesTheAnswersOfTheSolidAtZero) {
     const std::vector<double> eval0 = numbers_of(run("eval " + at_zero.string() + " --derivatives" + points));
     const nlohmann::json mass0 = nlohmann::json::parse(run("info --mass --json " + at_zero.string()))["objects"][0];
     const nlohmann::json jacobian0 = nlohmann::json::parse(run("jacobian --json " + at_zero.string()))["objects"][0];
-    const std::string view0 = run("view " + at_zero.string() + " -o " + (dir.path() / "v0.png").string() + " --color jacobian");
+    const std::string view0 = run("view " + at_zero.string() + " -o " + (dir.path() / "v0.png").string() + " --size 160,120 --color jacobian");
     for (const double offset : {1e6, 1e12, 1e15, -1e15}) {
       const auto moved = dir.path() / "moved.json";
       write_model_file(dyadic_solid(offset, rational), moved);
@@ -80,7 +80,7 @@ TEST(FarFromOriginCli, EveryCommandGivesTheAnswersOfTheSolidAtZero) {
       EXPECT_NEAR(jacobian["lower"].get<double>(), jacobian0["lower"].get<double>(), 1e-10) << offset;
       EXPECT_NEAR(jacobian["upper"].get<double>(), jacobian0["upper"].get<double>(), 1e-10) << offset;
       // The colour bar's range, printed on the summary line ("jacobian in [a, b]").
-      const std::string view = run("view " + moved.string() + " -o " + (dir.path() / "v.png").string() + " --color jacobian");
+      const std::string view = run("view " + moved.string() + " -o " + (dir.path() / "v.png").string() + " --size 160,120 --color jacobian");
       EXPECT_EQ(view.substr(view.find("jacobian in")), view0.substr(view0.find("jacobian in"))) << offset;
     }
   }

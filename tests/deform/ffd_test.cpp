@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "support/test_splines.h"
@@ -234,6 +235,49 @@ TEST(Ffd, NonFinitePointsAreBadInput) {
   const Lattice lattice = undeformed_lattice(test_support::unit_cube(), {1, 1, 1});
   EXPECT_THROW(deform_point(lattice, Eigen::Vector3d(NAN, 0, 0)), InvalidInput);
   EXPECT_THROW(deform_points(lattice, {Eigen::Vector3d(0, INFINITY, 0)}), InvalidInput);
+}
+
+// Far from the origin (issue 16): a lattice and the points it deforms, both offset by 1e6, 1e12
+// or 1e15, move as the same lattice and points at 0 do. The lattice at 0 is the offset one moved
+// back, exactly (Sterbenz: x + o and o are within a factor 2), so the two are the same
+// deformation; the volume is evaluated relative to its local origin (TensorSpline::local_origin)
+// and the frame of eq. 10 works on X - P0, so the results differ by the rounding of positions
+// near the offset only, a few ulp of it. Points outside the box exercise the displacement rule.
+TEST(Ffd, FarFromTheOriginDeformsAsAtTheOrigin) {
+  std::mt19937 rng(16);
+  auto points = random_points(rng, 400, 1.0);
+  for (int k = 0; k < 40; ++k) points.push_back(points[static_cast<std::size_t>(k)] + Eigen::Vector3d(2.5, -3.0, 1.5) * (k % 2 ? 1 : -1));
+  const Lattice base = undeformed_lattice(std::vector<Eigen::Vector3d>(points.begin(), points.begin() + 400), {2, 3, 2}, {3, 2, 4}, 0.05,
+                                          skew_directions());
+  for (const bool rational : {false, true}) {
+    const Lattice bent = perturbed(base, rng, 0.2, rational);
+    for (const double offset : {1e6, 1e12, 1e15}) {
+      for (const Eigen::Vector3d& direction : {Eigen::Vector3d(1, -1, 1), Eigen::Vector3d(0, 0, -1)}) {
+        const Eigen::Vector3d o = offset * direction;
+        std::vector<double> far_control = bent.volume.points(), near_control(far_control.size());
+        for (std::size_t i = 0; i < far_control.size(); ++i) {
+          far_control[i] += o[static_cast<int>(i % 3)];
+          near_control[i] = far_control[i] - o[static_cast<int>(i % 3)];
+        }
+        const Lattice far{BSplineVolume(bent.volume.knot_vectors(), 3, far_control, bent.volume.weights()), bent.origin + o, bent.axes};
+        const Lattice near{BSplineVolume(bent.volume.knot_vectors(), 3, near_control, bent.volume.weights()), far.origin - o, bent.axes};
+        std::vector<Eigen::Vector3d> far_points(points.size()), near_points(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          far_points[i] = points[i] + o;
+          near_points[i] = far_points[i] - o;
+        }
+        const auto far_moved = deform_points(far, far_points);
+        const auto near_moved = deform_points(near, near_points);
+        // Measured: half an ulp of the offset (the rounding of the result); allowed: one to two ulp.
+        const double tolerance = offset * std::numeric_limits<double>::epsilon() + 1e-12;
+        double worst = 0;
+        for (std::size_t i = 0; i < points.size(); ++i) worst = std::max(worst, (far_moved[i] - o - near_moved[i]).cwiseAbs().maxCoeff());
+        EXPECT_LE(worst, tolerance) << "offset " << offset << " direction " << direction.transpose() << " rational " << rational;
+        // The deformation is not the identity there (the test would be empty otherwise).
+        EXPECT_GT((near_moved[3] - near_points[3]).norm(), 1e-3);
+      }
+    }
+  }
 }
 
 }  // namespace
