@@ -44,16 +44,22 @@ std::vector<Eigen::Vector3d> random_points(int count) {
   return points;
 }
 
-void BM_EvaluateMemoised(benchmark::State& state) {
-  const DmsSplineVolume& v = volume(static_cast<int>(state.range(0)));
-  DmsSplineEvaluator evaluator(v);
-  const auto points = random_points(4096);
+// One point per iteration, the points in turn, value and gradient: the loop every single-point
+// evaluation benchmark times.
+void evaluate_in_turn(benchmark::State& state, DmsSplineEvaluator& evaluator, const std::vector<Eigen::Vector3d>& points) {
   DmsSplinePoint out;
   std::size_t i = 0;
   for (auto _ : state) {
     evaluator.evaluate(points[i++ % points.size()], 1, out);
     benchmark::DoNotOptimize(out.value.data());
   }
+}
+
+void BM_EvaluateMemoised(benchmark::State& state) {
+  const DmsSplineVolume& v = volume(static_cast<int>(state.range(0)));
+  DmsSplineEvaluator evaluator(v);
+  const auto points = random_points(4096);
+  evaluate_in_turn(state, evaluator, points);
   state.counters["tetrahedra"] = static_cast<double>(v.domain().tetrahedra.size());
   std::vector<int> candidates;
   double total = 0;
@@ -72,12 +78,7 @@ void BM_EvaluateMemoisedPerTetrahedron(benchmark::State& state) {
   const DmsSplineVolume& v = volume(static_cast<int>(state.range(0)), true);
   DmsSplineEvaluator evaluator(v);
   const auto points = random_points(4096);
-  DmsSplinePoint out;
-  std::size_t i = 0;
-  for (auto _ : state) {
-    evaluator.evaluate(points[i++ % points.size()], 1, out);
-    benchmark::DoNotOptimize(out.value.data());
-  }
+  evaluate_in_turn(state, evaluator, points);
   state.counters["points_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_EvaluateMemoisedPerTetrahedron)->Arg(2)->Arg(3);
@@ -109,12 +110,7 @@ void BM_EvaluateMemoisedCoherent(benchmark::State& state) {
   for (const auto& p : points) located.emplace_back(evaluator.locate(p), p);
   std::sort(located.begin(), located.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (std::size_t i = 0; i < points.size(); ++i) points[i] = located[i].second;
-  DmsSplinePoint out;
-  std::size_t i = 0;
-  for (auto _ : state) {
-    evaluator.evaluate(points[i++ % points.size()], 1, out);
-    benchmark::DoNotOptimize(out.value.data());
-  }
+  evaluate_in_turn(state, evaluator, points);
   state.counters["points_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_EvaluateMemoisedCoherent)->Arg(2)->Arg(3);
