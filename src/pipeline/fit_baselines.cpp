@@ -62,6 +62,26 @@ std::pair<std::size_t, double> interval_of(const std::vector<double>& axis, doub
   return {i, (t - axis[i]) / (axis[i + 1] - axis[i])};
 }
 
+// Calls f(control point index, basis value) for the (p+1)^3 tensor-product basis functions that
+// may be nonzero at x (inside the knot vectors' domains), first index fastest.
+template <class F>
+void for_each_tensor_basis(const std::array<KnotVector, 3>& knots, const Eigen::Vector3d& x, F&& f) {
+  const int p = knots[0].degree();
+  std::array<int, 3> span{};
+  std::array<std::array<double, 6>, 3> basis{};  // degrees 1..5
+  for (int d = 0; d < 3; ++d) {
+    const KnotVector& k = knots[static_cast<std::size_t>(d)];
+    span[static_cast<std::size_t>(d)] = k.find_span(x[d]);
+    k.basis(span[static_cast<std::size_t>(d)], x[d], basis[static_cast<std::size_t>(d)].data());
+  }
+  const int nu = knots[0].num_basis(), nv = knots[1].num_basis();
+  for (int k = 0; k <= p; ++k)
+    for (int j = 0; j <= p; ++j)
+      for (int i = 0; i <= p; ++i)
+        f((span[0] - p + i) + nu * ((span[1] - p + j) + nv * (span[2] - p + k)),
+          basis[0][static_cast<std::size_t>(i)] * basis[1][static_cast<std::size_t>(j)] * basis[2][static_cast<std::size_t>(k)]);
+}
+
 void add_errors(MethodError& e, double difference, double count_inverse) {
   e.data_mean_square += difference * difference * count_inverse;
   e.data_max_abs = std::max(e.data_max_abs, std::abs(difference));
@@ -75,29 +95,12 @@ void add_truth_errors(MethodError& e, double difference, double count_inverse) {
 }  // namespace
 
 Eigen::VectorXd TensorProductFit::operator()(const Eigen::Vector3d& x) const {
-  std::array<double, 3> t{};
-  for (int d = 0; d < 3; ++d) {
-    const KnotVector& k = volume.knot_vector(d);
-    t[static_cast<std::size_t>(d)] = std::clamp(x[d], k.domain_min(), k.domain_max());
-  }
-  const int p = volume.knot_vector(0).degree();
-  std::array<int, 3> span{};
-  std::array<std::vector<double>, 3> basis;
-  for (int d = 0; d < 3; ++d) {
-    const KnotVector& k = volume.knot_vector(d);
-    span[static_cast<std::size_t>(d)] = k.find_span(t[static_cast<std::size_t>(d)]);
-    basis[static_cast<std::size_t>(d)].resize(static_cast<std::size_t>(p + 1));
-    k.basis(span[static_cast<std::size_t>(d)], t[static_cast<std::size_t>(d)], basis[static_cast<std::size_t>(d)].data());
-  }
-  const auto counts = volume.num_control_points();
+  const std::array<KnotVector, 3>& knots = volume.knot_vectors();
+  Eigen::Vector3d t;
+  for (int d = 0; d < 3; ++d)
+    t[d] = std::clamp(x[d], knots[static_cast<std::size_t>(d)].domain_min(), knots[static_cast<std::size_t>(d)].domain_max());
   Eigen::VectorXd value = Eigen::VectorXd::Zero(coefficients.cols());
-  for (int k = 0; k <= p; ++k)
-    for (int j = 0; j <= p; ++j)
-      for (int i = 0; i <= p; ++i) {
-        const int a = span[0] - p + i, b = span[1] - p + j, c = span[2] - p + k;
-        const double w = basis[0][static_cast<std::size_t>(i)] * basis[1][static_cast<std::size_t>(j)] * basis[2][static_cast<std::size_t>(k)];
-        value += w * coefficients.row(a + counts[0] * (b + counts[1] * c)).transpose();
-      }
+  for_each_tensor_basis(knots, t, [&](int index, double w) { value += w * coefficients.row(index).transpose(); });
   return value;
 }
 
@@ -124,22 +127,8 @@ TensorProductFit fit_tensor_product_volume(const VolumeData& data, int degree, s
   const Eigen::Index unknowns = static_cast<Eigen::Index>(counts[0]) * counts[1] * counts[2];
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(data.size() * static_cast<std::size_t>((degree + 1) * (degree + 1) * (degree + 1)));
-  std::array<std::vector<double>, 3> basis;
-  for (auto& b : basis) b.resize(static_cast<std::size_t>(degree + 1));
-  for (std::size_t s = 0; s < data.size(); ++s) {
-    std::array<int, 3> span{};
-    for (int d = 0; d < 3; ++d) {
-      span[static_cast<std::size_t>(d)] = knots[static_cast<std::size_t>(d)].find_span(data.points[s][d]);
-      knots[static_cast<std::size_t>(d)].basis(span[static_cast<std::size_t>(d)], data.points[s][d], basis[static_cast<std::size_t>(d)].data());
-    }
-    for (int k = 0; k <= degree; ++k)
-      for (int j = 0; j <= degree; ++j)
-        for (int i = 0; i <= degree; ++i) {
-          const int a = span[0] - degree + i, b = span[1] - degree + j, c = span[2] - degree + k;
-          entries.emplace_back(static_cast<int>(s), a + counts[0] * (b + counts[1] * c),
-                               basis[0][static_cast<std::size_t>(i)] * basis[1][static_cast<std::size_t>(j)] * basis[2][static_cast<std::size_t>(k)]);
-        }
-  }
+  for (std::size_t s = 0; s < data.size(); ++s)
+    for_each_tensor_basis(knots, data.points[s], [&](int index, double w) { entries.emplace_back(static_cast<int>(s), index, w); });
   Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(data.size()), unknowns);
   a.setFromTriplets(entries.begin(), entries.end());
   // The simplex fit's solver and regularisation (simplex/control_fit.h), so the comparison
