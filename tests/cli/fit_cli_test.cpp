@@ -92,6 +92,8 @@ TEST_F(FitCli, BadInputExitsWithTwoNamingTheProblem) {
   expect_bad("fit " + path("data.csv") + " --knots moving", "--knots");
   expect_bad("fit " + path("data.csv") + " --error -1", "--error");
   expect_bad("fit " + path("data.csv") + " --max-tetrahedra -5", "--max-tetrahedra");
+  expect_bad("fit " + path("data.csv") + " --fairing -0.1", "--fairing");
+  expect_bad("fit " + path("data.csv") + " --fairing inf", "--fairing");
 }
 
 TEST_F(FitCli, RefinementAndKnotOptimisationAreReportedInTheStatistics) {
