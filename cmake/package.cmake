@@ -5,7 +5,12 @@
 include(CMakePackageConfigHelpers)
 
 set(VOLSPLINE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/volspline)
-set_target_properties(volspline PROPERTIES VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
+# The exported targets: volspline::<component> for every component built, and volspline::volspline
+# linking them all (cmake/library.cmake).
+set(VOLSPLINE_EXPORTED_TARGETS volspline)
+foreach(component ${VOLSPLINE_COMPONENTS})
+  list(APPEND VOLSPLINE_EXPORTED_TARGETS volspline_${component})
+endforeach()
 
 # 0.x: a minor version may change the interface, so only the same major.minor is compatible.
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/volsplineConfigVersion.cmake
@@ -14,7 +19,7 @@ if(NOT BUILD_SHARED_LIBS)
   set(BUILD_SHARED_LIBS OFF)
 endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/volsplineConfig.cmake.in ${PROJECT_BINARY_DIR}/volsplineConfig.cmake @ONLY)
-export(TARGETS volspline NAMESPACE volspline:: FILE ${PROJECT_BINARY_DIR}/volsplineTargets.cmake)
+export(TARGETS ${VOLSPLINE_EXPORTED_TARGETS} NAMESPACE volspline:: FILE ${PROJECT_BINARY_DIR}/volsplineTargets.cmake)
 
 # pkg-config cannot name VTK or Embree (neither ships a .pc file), so a static library's private
 # link line lists their files as CMake found them.
@@ -39,18 +44,47 @@ function(volspline_link_files target out)
   set(${out} ${files} PARENT_SCOPE)
 endfunction()
 set(VOLSPLINE_PC_PRIVATE_LIBS)
+set(volspline_pc_files)
+if(VOLSPLINE_WITH_EMBREE)
+  list(APPEND volspline_pc_files embree)
+endif()
 # CommonExecutionModel: the readers call vtkAlgorithm directly, which the IO libraries only link.
-foreach(dependency embree VTK::CommonCore VTK::CommonDataModel VTK::CommonExecutionModel VTK::CommonMath VTK::IOXML VTK::IOLegacy VTK::IOImage)
+if(VOLSPLINE_WITH_VTK)
+  list(APPEND volspline_pc_files ${VOLSPLINE_VTK_TARGETS})
+endif()
+foreach(dependency ${volspline_pc_files})
   volspline_link_files(${dependency} files)
   list(APPEND VOLSPLINE_PC_PRIVATE_LIBS ${files})
 endforeach()
 list(JOIN VOLSPLINE_PC_PRIVATE_LIBS " " VOLSPLINE_PC_PRIVATE_LIBS)
+# The components, each before the ones it needs (render, models, vtk, cgal, core), and what
+# pkg-config knows of their dependencies.
+set(VOLSPLINE_PC_LIBS)
+foreach(component ${VOLSPLINE_COMPONENTS})
+  list(PREPEND VOLSPLINE_PC_LIBS -lvolspline_${component})
+endforeach()
+list(JOIN VOLSPLINE_PC_LIBS " " VOLSPLINE_PC_LIBS)
+set(VOLSPLINE_PC_REQUIRES eigen3 tbb)
+set(VOLSPLINE_PC_REQUIRES_PRIVATE)
+if(VOLSPLINE_WITH_CGAL)
+  list(APPEND VOLSPLINE_PC_REQUIRES nlohmann_json)
+  list(APPEND VOLSPLINE_PC_REQUIRES_PRIVATE pugixml gmpxx mpfr gmp)
+endif()
+if(VOLSPLINE_WITH_STB)
+  list(APPEND VOLSPLINE_PC_REQUIRES_PRIVATE stb)
+endif()
+if(VOLSPLINE_WITH_GLTF)
+  list(APPEND VOLSPLINE_PC_REQUIRES_PRIVATE tinygltf)
+endif()
+list(JOIN VOLSPLINE_COMPONENTS " " VOLSPLINE_PC_COMPONENTS)
+list(JOIN VOLSPLINE_PC_REQUIRES " " VOLSPLINE_PC_REQUIRES)
+list(JOIN VOLSPLINE_PC_REQUIRES_PRIVATE " " VOLSPLINE_PC_REQUIRES_PRIVATE)
 file(RELATIVE_PATH VOLSPLINE_PC_PREFIX ${CMAKE_INSTALL_FULL_LIBDIR}/pkgconfig ${CMAKE_INSTALL_PREFIX})
 string(REGEX REPLACE "/$" "" VOLSPLINE_PC_PREFIX "${VOLSPLINE_PC_PREFIX}")
 configure_file(${PROJECT_SOURCE_DIR}/cmake/volspline.pc.in ${PROJECT_BINARY_DIR}/volspline.pc @ONLY)
 
 if(VOLSPLINE_INSTALL)
-  install(TARGETS volspline EXPORT volsplineTargets
+  install(TARGETS ${VOLSPLINE_EXPORTED_TARGETS} EXPORT volsplineTargets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

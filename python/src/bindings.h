@@ -60,6 +60,10 @@ class PythonProgress {
 /// An Image as an array of shape (height, width, 4), uint8, rows top to bottom.
 py::array_t<std::uint8_t> image_array(const Image& image);
 
+/// Points from an array of shape (N, 3), or one point (3,). \throw InvalidInput naming `what`
+/// for another shape.
+std::vector<Eigen::Vector3d> points_from(const py::handle& object, const char* what);
+
 /// The model object of a Curve .. Hypervolume, SweptSolid, SimplexSplineVolume or ModelObject.
 /// \throw InvalidInput for anything else.
 ModelObject model_object_from(const py::handle& item);
@@ -75,5 +79,6 @@ void bind_tensor_splines(py::module_& m);
 void bind_constructions(py::module_& m);
 void bind_models(py::module_& m);
 void bind_analysis(py::module_& m);
+void bind_deformations(py::module_& m);
 
 }  // namespace volspline::python

@@ -7,6 +7,7 @@
 
 #include "bindings.h"
 #include "volspline/construct/loft.h"
+#include "volspline/construct/paper_examples.h"
 #include "volspline/construct/primitives.h"
 #include "volspline/construct/revolution.h"
 #include "volspline/construct/sweep.h"
@@ -32,6 +33,17 @@ void bind_constructions(py::module_& m) {
         "Lasser Fig. 2: a half torus as one Bézier volume with points at infinity (make half-torus).");
   m.def("half_cylinder_sweep", &half_cylinder_sweep,
         "Joy-Duchaineau Fig. 1: (cos pi u + 3w, sin pi u, v), rational degree (2, 1, 1).");
+  m.def("hyperboloid", &hyperboloid_segment, py::arg("throat_radius") = 1.0, py::arg("half_height") = 1.0, py::arg("center") = origin,
+        "Lasser Fig. 3: half of a solid hyperboloid of one sheet x^2 + y^2 - z^2 = a^2 (a = throat_radius), |z| <= "
+        "half_height, degree (1, 1, 2) with points at infinity (make hyperboloid).");
+  m.def("paper_example_patch", &paper_example_patch,
+        "The bicubic patch of Joy-Duchaineau's Figs. 10, 11 and 13, from which swept_patch, twisted_loft and "
+        "curved_loft are made.");
+  m.def("swept_patch", &swept_patch, "Joy-Duchaineau Fig. 10: the bicubic patch swept along a line (make swept-patch).");
+  m.def("twisted_loft", &twisted_loft,
+        "Joy-Duchaineau Fig. 11: the patch twisted 35 degrees while swept, sampled 4 times and lofted (make twisted-loft).");
+  m.def("curved_loft", &curved_loft,
+        "Joy-Duchaineau Fig. 13: the patch swept along a curved path, sampled and lofted (make curved-loft).");
   m.def("revolve", &revolve, py::arg("profile"), py::arg("axis_point"), py::arg("axis_direction"), py::arg("angle"),
         "Revolve a profile surface about an axis through angle degrees (Lasser Theorem 2), exactly (make revolve).");
   m.def("extrude", &extrude, py::arg("profile"), py::arg("vector"),

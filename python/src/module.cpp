@@ -50,6 +50,7 @@ PYBIND11_MODULE(_volspline, m) {
   volspline::python::bind_constructions(m);
   volspline::python::bind_models(m);
   volspline::python::bind_analysis(m);
+  volspline::python::bind_deformations(m);
   volspline::python::bind_pictures(m);
   volspline::python::bind_blends(m);
 }

@@ -36,11 +36,9 @@
 #include "volspline/simplex/volume_fitting.h"
 
 namespace volspline::python {
-namespace {
-
-using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 std::vector<Eigen::Vector3d> points_from(const py::handle& object, const char* what) {
+  using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
   const Doubles a = Doubles::ensure(object);
   if (!a || !((a.ndim() == 2 && a.shape(1) == 3) || (a.ndim() == 1 && a.shape(0) == 3)))
     throw InvalidInput(std::string(what) + ": expected an array of shape (N, 3) or (3,)");
@@ -49,6 +47,10 @@ std::vector<Eigen::Vector3d> points_from(const py::handle& object, const char* w
   std::memcpy(out.data()->data(), a.data(), static_cast<std::size_t>(n) * 3 * sizeof(double));
   return out;
 }
+
+namespace {
+
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // The domain: tetrahedra given as arrays or a mesh file, the Delaunay tetrahedralisation of
 // points, or CGAL Mesh_3 of a closed surface (a mesh file or a mesh dict).

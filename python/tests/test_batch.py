@@ -19,6 +19,7 @@ import pytest
 
 dask = pytest.importorskip("dask", reason="volspline.batch needs Dask: apt-get install python3-dask")
 distributed = pytest.importorskip("distributed", reason="volspline.batch needs Dask: apt-get install python3-distributed")
+import distributed.diagnostics.plugin  # noqa: E402
 
 from volspline import batch  # noqa: E402
 
@@ -277,3 +278,55 @@ def test_command_line(cli_path, library, tmp_path):
     r = subprocess.run([sys.executable, "-m", "volspline.batch", "nonsense", "--out", str(tmp_path)],
                        capture_output=True, text=True, env=env)
     assert r.returncode == 2 and "invalid choice" in r.stderr
+
+
+
+class FinishedVolsplineTasks(distributed.diagnostics.plugin.SchedulerPlugin):
+    """Counts on the scheduler the batch tasks that finished there (keys `volspline-OPERATION-...`)."""
+    name = "finished-volspline-tasks"
+
+    def __init__(self):
+        self.keys = set()
+
+    def transition(self, key, start, finish, *args, **kwargs):
+        if finish == "memory" and str(key).startswith("volspline-"):
+            self.keys.add(str(key))
+
+
+def test_scheduler_address_runs_on_that_cluster_and_leaves_it_running(client, library, cli_path, tmp_path):
+    """`--scheduler ADDRESS` (a running cluster: the LocalCluster of this module, reached by its
+    address only, from another process): the rows are the CLI's, every task finished on that
+    scheduler, and the batch leaves the cluster and its workers running."""
+    models, broken = library
+    good = [m for m in models if m not in broken][:4]
+    folded = [m for m, how in broken.items() if how == "folded"][0]
+    address = client.scheduler.address
+    assert address.startswith("tcp://")
+    client.register_scheduler_plugin(FinishedVolsplineTasks())
+
+    def finished_keys(dask_scheduler):
+        return sorted(dask_scheduler.plugins[FinishedVolsplineTasks.name].keys)
+
+    workers = set(client.scheduler_info()["workers"])
+    env = dict(os.environ, VOLSPLINE_CLI=cli_path)
+    out = tmp_path / "out"
+    try:
+        r = subprocess.run([sys.executable, "-m", "volspline.batch", "jacobian", *good, folded, "--out", str(out),
+                            "--scheduler", address], capture_output=True, text=True, env=env, timeout=300)
+        keys = client.run_on_scheduler(finished_keys)
+    finally:
+        client.run_on_scheduler(lambda dask_scheduler: dask_scheduler.remove_plugin(name=FinishedVolsplineTasks.name))
+    assert r.returncode == 3, r.stderr  # the folded model
+    assert "5 models: 4 ok, 1 failed" in r.stdout
+    assert len(keys) == 5 and all(k.startswith("volspline-jacobian-") for k in keys)
+    assert set(client.scheduler_info()["workers"]) == workers
+    rows = {row["file"]: row for row in map(json.loads, (out / "results.jsonl").read_text().splitlines())}
+    assert sorted(rows) == sorted([*good, folded])
+    for path in good:
+        code, figures, _ = direct_figures(cli_path, "jacobian", path)
+        assert code == 0 and rows[path]["verdict"] == "valid"
+        assert without_seconds(rows[path]["figures"]) == without_seconds(figures)
+    assert rows[folded]["verdict"] == "invalid" and rows[folded]["exit_code"] == 3
+    r = subprocess.run([sys.executable, "-m", "volspline.batch", "jacobian", *good, "--out", str(out),
+                        "--scheduler", address, "--workers", "2"], capture_output=True, text=True, env=env)
+    assert r.returncode == 2 and "exclude each other" in r.stderr

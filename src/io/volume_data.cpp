@@ -9,8 +9,6 @@
 #include "text_numbers.h"
 #include "volspline/core/coordinate_range.h"
 #include "volspline/core/error.h"
-#include "volspline/io/atomic_file.h"
-#include "volume_data_vtk.h"
 
 namespace volspline {
 namespace {
@@ -167,23 +165,6 @@ VolumeData parse_volume_csv(std::string_view text, const std::string& source) {
     for (std::size_t a = 0; a < attribute_fields.size(); ++a)
       data.attributes(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(a)) = values[i * width + 3 + a];
   }
-  validate_volume_data(data, source);
-  return data;
-}
-
-VolumeData read_volume_data(const std::filesystem::path& path) {
-  std::string extension = lower(path.extension().string());
-  const std::string source = path.string();
-  VolumeData data;
-  if (extension == ".csv") data = parse_volume_csv(read_file(path), source);
-  else if (extension == ".ply") data = parse_volume_ply(read_file(path), source);
-  else if (extension == ".inr") data = parse_inrimage(read_file(path), source);
-  else if (extension == ".vtu" || extension == ".vti" || extension == ".vtk" || extension == ".nii")
-    data = detail::read_vtk_volume_data(path, extension);
-  else
-    throw InvalidInput("unknown volume data format " + (extension.empty() ? std::string("(no extension)") : extension) +
-                           " (.csv, .ply, .vtu, .vti, .vtk, .inr or .nii expected)",
-                       source);
   validate_volume_data(data, source);
   return data;
 }

@@ -13,7 +13,9 @@
 
 #include <Eigen/Geometry>
 #include <sstream>
+#if VOLSPLINE_WITH_GLTF
 #include <tiny_gltf.h>
+#endif
 
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
@@ -239,6 +241,7 @@ std::string stl_bytes(const TriangleMesh& mesh, bool ascii) {
   return out;
 }
 
+#if VOLSPLINE_WITH_GLTF
 namespace {
 
 /// glTF colours are linear (glTF 2.0, "Meshes": COLOR_0), part_color's are sRGB (mesh/parts.h).
@@ -275,8 +278,16 @@ int add_accessor(tinygltf::Model& model, int view, int component, std::size_t co
 }
 
 }  // namespace
+#endif
 
+// tinygltf is optional in volspline::core (VOLSPLINE_WITH_GLTF, docs/using-volspline.md): without
+// it every other format is written and .glb is refused.
 std::string glb_bytes(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& vertex_colors) {
+#if !VOLSPLINE_WITH_GLTF
+  (void)mesh;
+  (void)vertex_colors;
+  throw InvalidInput("writing glTF (.glb) needs tinygltf: this volspline was built with VOLSPLINE_WITH_GLTF=OFF");
+#else
   validate_mesh(mesh);
   if (!vertex_colors.empty()) {
     if (vertex_colors.size() != mesh.num_vertices())
@@ -388,6 +399,7 @@ std::string glb_bytes(const TriangleMesh& mesh, const std::vector<Eigen::Vector3
   tinygltf::TinyGLTF writer;
   if (!writer.WriteGltfSceneToStream(&model, out, false, true)) throw Error("tinygltf could not write the glTF model");
   return out.str();
+#endif
 }
 
 std::string mesh_bytes(const TriangleMesh& mesh, MeshFormat format,

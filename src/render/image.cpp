@@ -2,13 +2,16 @@
 
 #include <limits>
 
+#if VOLSPLINE_WITH_STB
 #include <stb_image_write.h>
+#endif
 
 #include "volspline/core/error.h"
 #include "volspline/io/atomic_file.h"
 
 namespace volspline {
 
+#if VOLSPLINE_WITH_STB
 namespace {
 
 void append_to_string(void* context, void* data, int size) {
@@ -17,6 +20,7 @@ void append_to_string(void* context, void* data, int size) {
 }
 
 }  // namespace
+#endif
 
 Image::Image(int width_, int height_, std::uint8_t r, std::uint8_t g, std::uint8_t b,
              std::uint8_t a)
@@ -48,6 +52,11 @@ std::string png_bytes(const Image& image) {
   if (image.width > std::numeric_limits<int>::max() / 4) {
     throw InvalidInput("image is too wide to encode as PNG");
   }
+#if !VOLSPLINE_WITH_STB
+  // stb is optional in volspline::core (VOLSPLINE_WITH_STB, docs/using-volspline.md): pictures
+  // are still drawn in memory, only their encoding is refused.
+  throw InvalidInput("writing PNG needs stb: this volspline was built with VOLSPLINE_WITH_STB=OFF");
+#else
   std::string bytes;
   if (stbi_write_png_to_func(append_to_string, &bytes, image.width, image.height, 4,
                              image.rgba.data(), 4 * image.width) == 0) {
@@ -55,6 +64,7 @@ std::string png_bytes(const Image& image) {
                 std::to_string(image.height) + " image failed");
   }
   return bytes;
+#endif
 }
 
 void write_png(const Image& image, const std::filesystem::path& path) {
