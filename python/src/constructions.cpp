@@ -39,7 +39,7 @@ void bind_constructions(py::module_& m) {
   m.def("paper_example_patch", &paper_example_patch,
         "The bicubic patch of Joy-Duchaineau's Figs. 10, 11 and 13, from which swept_patch, twisted_loft and "
         "curved_loft are made.");
-  m.def("swept_patch", &swept_patch, "Joy-Duchaineau Fig. 10: the bicubic patch swept along a line (make swept-patch).");
+  m.def("swept_patch", static_cast<BSplineVolume (*)()>(&swept_patch), "Joy-Duchaineau Fig. 10: the bicubic patch swept along a line (make swept-patch).");
   m.def("twisted_loft", &twisted_loft,
         "Joy-Duchaineau Fig. 11: the patch twisted 35 degrees while swept, sampled 4 times and lofted (make twisted-loft).");
   m.def("curved_loft", &curved_loft,

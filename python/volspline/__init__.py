@@ -3,7 +3,7 @@
 Exact tensor-product B-spline curves, surfaces, volumes and 4-variate solids (polynomial and
 rational), the constructions of ``volspline make``, model files in every format, certified
 Jacobian checks and solid boundaries, pictures of the inside of solids, box-spline blends, swept
-solids and their envelopes, trivariate simplex spline volumes with material attributes (fitting,
+solids and their envelopes, free-form deformation, trivariate simplex spline volumes with material attributes (fitting,
 X-rays, isosurfaces). numpy arrays in and out; meshes to meshio and VTK. See docs/python.md.
 
     >>> import volspline, numpy as np
@@ -18,6 +18,7 @@ from ._volspline import (  # noqa: F401
     Hypervolume,
     InvalidInput,
     IoError,
+    Lattice,
     ModelObject,
     NotConverged,
     SimplexSplineVolume,
@@ -31,12 +32,18 @@ from ._volspline import (  # noqa: F401
     box,
     check_jacobian,
     cone,
+    curved_loft,
     cylinder,
     extrude,
+    ffd,
     fit,
     half_cylinder_sweep,
     half_torus,
+    hyperboloid,
+    lattice,
+    lattice_from,
     loft,
+    paper_example_patch,
     read,
     render,
     revolve,
@@ -47,9 +54,11 @@ from ._volspline import (  # noqa: F401
     simplex_spline,
     sweep,
     sweep_envelope,
+    swept_patch,
     swept_solid,
     torus,
     translation_volume,
+    twisted_loft,
     view,
     vtu_text,
     write,

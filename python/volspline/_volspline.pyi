@@ -86,6 +86,21 @@ class Hypervolume:
     @property
     def weights(self) -> numpy.ndarray: ...
 
+class Lattice:
+    """A free-form deformation lattice (docs/ffd.md): a B-spline volume over the box origin + axes * [0, 1]^3 whose control points are moved to deform what lies in the box. Made by lattice(), read by lattice_from(); to_objects() gives what volspline.write stores as a lattice file."""
+    @property
+    def axes(self) -> numpy.ndarray: ...
+    def coordinates(self, point: numpy.ndarray) -> numpy.ndarray:
+        """The (s, t, u) of a point in the box: x = origin + axes * (s, t, u)."""
+    @property
+    def origin(self) -> numpy.ndarray: ...
+    def to_objects(self) -> List[ModelObject]:
+        """The lattice as model objects (its volume with metadata.lattice), for volspline.write: the file the command line's lattice writes and ffd reads."""
+    @property
+    def volume(self) -> Volume: ...
+    def with_volume(self, volume: Volume) -> Lattice:
+        """The same box with another volume (the lattice with its control points moved). Raises InvalidInput when the volume's degrees, knots or domain do not fit the box."""
+
 class ModelObject:
     """One object of a model file: a name, a spline and named attributes."""
     def __init__(self, spline: object, name: str = ..., attributes: Dict[str, List[float]] = ...) -> None:
@@ -236,11 +251,17 @@ def check_jacobian(volume: Volume, bounds: str = ..., tolerance: float = ..., ma
 def cone(radius1: float, radius2: float, height: float, center: numpy.ndarray = ...) -> Volume:
     """The cone or frustum about the z axis, degree (1, 1, 2) (make cone)."""
 
+def curved_loft() -> Volume:
+    """Joy-Duchaineau Fig. 13: the patch swept along a curved path, sampled and lofted (make curved-loft)."""
+
 def cylinder(radius: float, height: float, inner: float = ..., center: numpy.ndarray = ...) -> Volume:
     """The solid or hollow cylinder about the z axis, degree (1, 1, 2) (make cylinder)."""
 
 def extrude(profile: Surface, vector: numpy.ndarray) -> Volume:
     """Move a profile surface along a vector (Lasser Theorem 1) (make extrude)."""
+
+def ffd(lattice: object, x: object) -> object:
+    """Free-form deformation through a lattice (a Lattice, or a lattice file or its objects) (ffd LATTICE INPUT): a mesh dict gives the deformed mesh; points (N, 3) the deformed points; a Curve, Surface or Volume its exact composition with the lattice map (degrees multiply); a model (a path, objects or a list of them) its deformed objects as the command line's ffd writes them (curves and surfaces composed exactly, simplex spline volumes by their control points). A point outside the box moves as the nearest point of the box does (docs/ffd.md)."""
 
 def fit(data: object, degree: int = ..., *, attributes: List[str] = ..., primary_knots: int = ..., knots: str = ..., error: float = ..., max_tetrahedra: int = ..., fairing: float = ..., progress: object = ...) -> tuple:
     """Fits scattered volume data with a DMS simplex spline (Hua-He-Qin §5), as `volspline fit`. data: a
@@ -257,8 +278,20 @@ def half_cylinder_sweep() -> Volume:
 def half_torus(major: float = ..., minor: float = ..., center: numpy.ndarray = ...) -> Volume:
     """Lasser Fig. 2: a half torus as one Bézier volume with points at infinity (make half-torus)."""
 
+def hyperboloid(throat_radius: float = ..., half_height: float = ..., center: numpy.ndarray = ...) -> Volume:
+    """Lasser Fig. 3: half of a solid hyperboloid of one sheet x^2 + y^2 - z^2 = a^2 (a = throat_radius), |z| <= half_height, degree (1, 1, 2) with points at infinity (make hyperboloid)."""
+
+def lattice(around: object, degree: List[int], divisions: List[int] = ..., margin: float = ..., axes: Optional[numpy.ndarray] = ...) -> Lattice:
+    """The undeformed lattice (the identity map) around a mesh dict or points (N, 3) (lattice MESH): B-spline degree (p, q, r), divisions Bézier cells per direction, the box grown by margin times its longest edge on every side, its edges along the columns of axes (default the coordinate axes; need not be orthogonal)."""
+
+def lattice_from(lattice: handle) -> Lattice:
+    """The lattice of a lattice model file (a path) or of its objects. Raises InvalidInput naming what is missing."""
+
 def loft(sections: List[Surface], degree: int = ..., parameterization: str = ...) -> Volume:
     """A volume interpolating the sections (skinning) (make loft)."""
+
+def paper_example_patch() -> Surface:
+    """The bicubic patch of Joy-Duchaineau's Figs. 10, 11 and 13, from which swept_patch, twisted_loft and curved_loft are made."""
 
 def read(path: os.PathLike, format: str = ...) -> List[ModelObject]:
     """The objects of a model file in any format the command line reads (JSON model, G+Smo XML, IRIT .itd, ...; chosen by extension unless format is given). Raises InvalidInput naming the file and the place, IoError if it cannot be read."""
@@ -300,6 +333,9 @@ mesh dict whose parameters are each vertex's (u, v, w), plus times (t per vertex
 generator patch per vertex) and stats (triangles per source, cells, closed, oriented,
 self_intersection_free, components, volume, seconds)."""
 
+def swept_patch() -> Volume:
+    """Joy-Duchaineau Fig. 10: the bicubic patch swept along a line (make swept-patch)."""
+
 def swept_solid(generator: object, path: Curve, frame: object = ..., tolerance: float = ...) -> SweptSolid:
     """The swept solid of a generator (a Volume or a list of Volumes) along a path (a 3-D Curve), as
 `volspline make swept-solid`. frame: 'fixed' (R = I), 'frenet' or 'rmf' (fitted to `tolerance`,
@@ -312,6 +348,9 @@ def torus(major: float, minor: float, angle: float = ..., center: numpy.ndarray 
 
 def translation_volume(profile: Surface, path: Curve) -> Volume:
     """Lasser's translation volume F(u, v) + K(w) - K(0), exact for rational paths (make extrude --path)."""
+
+def twisted_loft() -> Volume:
+    """Joy-Duchaineau Fig. 11: the patch twisted 35 degrees while swept, sampled 4 times and lofted (make twisted-loft)."""
 
 def view(model: object, *, iso: List[Tuple[str, int]] = ..., through: Optional[List[float]] = ..., slices: List[Tuple[str, int]] = ..., planes: List[Tuple[numpy.ndarray, float]] = ..., core: Optional[numpy.ndarray] = ..., paddlewheels: List[Tuple[str, int]] = ..., faces: bool = ..., cutaway: bool = ..., color: str = ..., range: Optional[List[float]] = ..., resolution: int = ..., size: List[int] = ..., camera: numpy.ndarray = ..., up: numpy.ndarray = ..., edges: bool = ..., transparent: bool = ..., png: Optional[os.PathLike] = ..., progress: object = ...) -> dict:
     """Looking inside solids (Lasser 1994 §IV), as `volspline view`."""
