@@ -22,18 +22,18 @@ bool spans_space(const Eigen::Matrix3d& axes) {
 
 const char* axis_name(int d) { return d == 0 ? "U" : d == 1 ? "V" : "W"; }
 
-[[noreturn]] void fail(const std::string& source, const std::string& path, const std::string& message) {
+[[noreturn]] void lattice_model_error(const std::string& source, const std::string& path, const std::string& message) {
   throw InvalidInput(message, source.empty() ? path : source + ": " + path);
 }
 
 Eigen::Vector3d read_vector(const nlohmann::json& value, const std::string& source, const std::string& path) {
-  if (!value.is_array() || value.size() != 3) fail(source, path, "expected an array of three numbers");
+  if (!value.is_array() || value.size() != 3) lattice_model_error(source, path, "expected an array of three numbers");
   Eigen::Vector3d v;
   for (int i = 0; i < 3; ++i) {
     const auto& x = value[static_cast<std::size_t>(i)];
-    if (!x.is_number()) fail(source, path + "[" + std::to_string(i) + "]", "expected a number");
+    if (!x.is_number()) lattice_model_error(source, path + "[" + std::to_string(i) + "]", "expected a number");
     v[i] = x.get<double>();
-    if (!std::isfinite(v[i])) fail(source, path + "[" + std::to_string(i) + "]", "expected a finite number");
+    if (!std::isfinite(v[i])) lattice_model_error(source, path + "[" + std::to_string(i) + "]", "expected a finite number");
   }
   return v;
 }
@@ -154,33 +154,33 @@ Model lattice_to_model(const Lattice& lattice) {
 
 Lattice lattice_from_model(const Model& model, const std::string& source) {
   if (model.objects.size() != 1) {
-    fail(source, "objects", "a lattice file holds exactly one object (the lattice volume), got " +
+    lattice_model_error(source, "objects", "a lattice file holds exactly one object (the lattice volume), got " +
                                 std::to_string(model.objects.size()));
   }
   const ModelObject& object = model.objects[0];
   const auto* volume = std::get_if<BSplineVolume>(&object.spline);
-  if (volume == nullptr) fail(source, "objects[0].type", "expected a bspline_volume or bezier_volume");
+  if (volume == nullptr) lattice_model_error(source, "objects[0].type", "expected a bspline_volume or bezier_volume");
   const std::string path = "objects[0].metadata.lattice";
   if (!object.metadata.is_object() || !object.metadata.contains("lattice")) {
-    fail(source, "objects[0].metadata", "expected a \"lattice\" entry with \"origin\" and \"axes\"");
+    lattice_model_error(source, "objects[0].metadata", "expected a \"lattice\" entry with \"origin\" and \"axes\"");
   }
   const nlohmann::json& entry = object.metadata["lattice"];
-  if (!entry.is_object()) fail(source, path, "expected an object with \"origin\" and \"axes\"");
-  if (!entry.contains("origin")) fail(source, path, "expected an \"origin\": [x, y, z]");
-  if (!entry.contains("axes")) fail(source, path, "expected \"axes\": [[Ux, Uy, Uz], [Vx, Vy, Vz], [Wx, Wy, Wz]]");
+  if (!entry.is_object()) lattice_model_error(source, path, "expected an object with \"origin\" and \"axes\"");
+  if (!entry.contains("origin")) lattice_model_error(source, path, "expected an \"origin\": [x, y, z]");
+  if (!entry.contains("axes")) lattice_model_error(source, path, "expected \"axes\": [[Ux, Uy, Uz], [Vx, Vy, Vz], [Wx, Wy, Wz]]");
   const Eigen::Vector3d origin = read_vector(entry["origin"], source, path + ".origin");
   const nlohmann::json& axes_json = entry["axes"];
-  if (!axes_json.is_array() || axes_json.size() != 3) fail(source, path + ".axes", "expected three non-coplanar vectors");
+  if (!axes_json.is_array() || axes_json.size() != 3) lattice_model_error(source, path + ".axes", "expected three non-coplanar vectors");
   Eigen::Matrix3d axes;
   for (int d = 0; d < 3; ++d) {
     axes.col(d) = read_vector(axes_json[static_cast<std::size_t>(d)], source, path + ".axes[" + std::to_string(d) + "]");
   }
-  if (!spans_space(axes)) fail(source, path + ".axes", "expected three non-coplanar vectors");
+  if (!spans_space(axes)) lattice_model_error(source, path + ".axes", "expected three non-coplanar vectors");
   Lattice lattice{*volume, origin, axes};
   try {
     validate_lattice(lattice);
   } catch (const InvalidInput& e) {
-    fail(source, "objects[0]", e.message());
+    lattice_model_error(source, "objects[0]", e.message());
   }
   return lattice;
 }
