@@ -3,6 +3,7 @@
 #  1. `cmake --install` into a fresh prefix, then examples/consumer finds the package there,
 #     builds and runs (its checks: the ball's sphere face to 1e-12, the box's certified Jacobian);
 #  2. the same consumer built from the pkg-config file alone;
+#  1b. find_package(volspline COMPONENTS ...) gives the targets built and refuses one that was not;
 #  3. a parent project that adds the source tree with add_subdirectory, next to a src/ folder of
 #     its own whose file must not be compiled (the glob once used CMAKE_SOURCE_DIR).
 # Arguments: -DSOURCE=<volspline source> -DBUILD=<its build folder> -DWORK=<scratch folder>
@@ -51,6 +52,27 @@ run("build the consumer" ${CMAKE_COMMAND} --build ${WORK}/consumer)
 run("run the consumer" ${WORK}/consumer/volspline_consumer)
 if(NOT output MATCHES "volspline ${version}: sphere distance")
   message(FATAL_ERROR "the consumer printed '${output}'")
+endif()
+
+# 1b. Components: asking for those built gives their targets; asking for one that was not built
+# fails and names it (cmake/volsplineConfig.cmake.in).
+file(WRITE ${WORK}/components/CMakeLists.txt "cmake_minimum_required(VERSION 3.25)
+project(components LANGUAGES CXX)
+string(REPLACE \",\" \";\" wanted \"\${WANTED}\")
+find_package(volspline CONFIG REQUIRED COMPONENTS \${wanted})
+foreach(component \${wanted})
+  if(NOT TARGET volspline::\${component})
+    message(FATAL_ERROR \"no target volspline::\${component}\")
+  endif()
+endforeach()
+")
+run("find_package(volspline COMPONENTS ...)" ${CMAKE_COMMAND} -S ${WORK}/components -B ${WORK}/components-built -G ${GENERATOR}
+    -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_PREFIX_PATH=${prefix} -DWANTED=core,cgal,models,vtk,render)
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${WORK}/components -B ${WORK}/components-missing -G ${GENERATOR}
+    -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_PREFIX_PATH=${prefix} -DWANTED=core,imaginary
+  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(code EQUAL 0 OR NOT "${out}${err}" MATCHES "built without the component imaginary")
+  message(FATAL_ERROR "find_package(volspline COMPONENTS imaginary) did not fail naming the component (${code}):\n${out}\n${err}")
 endif()
 
 # 2. pkg-config, static.
