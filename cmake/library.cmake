@@ -73,28 +73,47 @@ if(VOLSPLINE_WITH_VTK)
   list(TRANSFORM VOLSPLINE_VTK_COMPONENTS PREPEND VTK:: OUTPUT_VARIABLE VOLSPLINE_VTK_TARGETS)
 endif()
 
-# Which source goes where: each rule moves the files matching its regular expression (on the path
-# below src/) out of what is left into a component.
-file(GLOB_RECURSE volspline_left CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/*.cpp)
-function(volspline_take component regex)
-  set(taken ${volspline_left})
-  list(FILTER taken INCLUDE REGEX "/src/${regex}")
-  list(FILTER volspline_left EXCLUDE REGEX "/src/${regex}")
-  set(volspline_left ${volspline_left} PARENT_SCOPE)
-  set(VOLSPLINE_${component}_SOURCES ${VOLSPLINE_${component}_SOURCES} ${taken} PARENT_SCOPE)
+# Which source goes where: the first rule whose regular expression matches the path below src/
+# names the component; what no rule matches is core. The same rules place the public headers
+# (cmake/package.cmake installs those of the components built).
+set(VOLSPLINE_COMPONENT_RULES
+  "vtk=(io/volume_data_vtk|mesh/tetrahedral_mesh_reader)\\.cpp$"
+  "render=(render/mesh_renderer|pipeline/solid_view_picture)\\.cpp$"
+  "cgal=simplex/"
+  "cgal=extract/simplex_"
+  "cgal=extract/(superset_trimming|image_contouring|swept_envelope|trimmed_solid_boundary)\\.cpp$"
+  "cgal=mesh/(tetrahedral_mesh|tetrahedron_locator|longest_edge_bisection|delaunay_tetrahedralization|point_cloud_domain|surface_tetrahedralization)\\.cpp$"
+  "cgal=render/xray_image\\.cpp$"
+  "core=io/(atomic_file|volume_data|volume_data_inr|volume_data_ply)\\.cpp$"
+  "models=(io|pipeline|deform)/"
+  "models=boxspline/scene_file\\.cpp$"
+  # Text labels (stb_easy_font) and the colour bars drawn with them: core with stb, else nowhere.
+  "stb=render/(text|color_bar)\\.cpp$")
+macro(volspline_split_rule rule)
+  string(FIND "${rule}" "=" volspline_at)
+  string(SUBSTRING "${rule}" 0 ${volspline_at} rule_component)
+  math(EXPR volspline_at "${volspline_at} + 1")
+  string(SUBSTRING "${rule}" ${volspline_at} -1 rule_regex)
+endmacro()
+function(volspline_component_of path out)
+  foreach(rule ${VOLSPLINE_COMPONENT_RULES})
+    volspline_split_rule("${rule}")
+    if(path MATCHES "/src/${rule_regex}")
+      set(${out} ${rule_component} PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  set(${out} core PARENT_SCOPE)
 endfunction()
-volspline_take(vtk "(io/volume_data_vtk|mesh/tetrahedral_mesh_reader)\\.cpp$")
-volspline_take(render "(render/mesh_renderer|pipeline/solid_view_picture)\\.cpp$")
-volspline_take(cgal "simplex/")
-volspline_take(cgal "extract/simplex_")
-volspline_take(cgal "extract/(superset_trimming|image_contouring|swept_envelope|trimmed_solid_boundary)\\.cpp$")
-volspline_take(cgal "mesh/(tetrahedral_mesh|tetrahedron_locator|longest_edge_bisection|delaunay_tetrahedralization|point_cloud_domain|surface_tetrahedralization)\\.cpp$")
-volspline_take(cgal "render/xray_image\\.cpp$")
-volspline_take(core "io/(atomic_file|volume_data|volume_data_inr|volume_data_ply)\\.cpp$")
-volspline_take(models "(io|pipeline|deform)/")
-volspline_take(models "boxspline/scene_file\\.cpp$")
-# Text labels (stb_easy_font) and the colour bars drawn with them: core with stb, else nowhere.
-volspline_take(stb "render/(text|color_bar)\\.cpp$")
+# Rule by rule, so that each component's list (and so its unity batches) keeps one order.
+file(GLOB_RECURSE volspline_left CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/*.cpp)
+foreach(rule ${VOLSPLINE_COMPONENT_RULES})
+  volspline_split_rule("${rule}")
+  set(taken ${volspline_left})
+  list(FILTER taken INCLUDE REGEX "/src/${rule_regex}")
+  list(FILTER volspline_left EXCLUDE REGEX "/src/${rule_regex}")
+  list(APPEND VOLSPLINE_${rule_component}_SOURCES ${taken})
+endforeach()
 list(APPEND VOLSPLINE_core_SOURCES ${volspline_left})
 if(VOLSPLINE_WITH_STB)
   list(APPEND VOLSPLINE_core_SOURCES ${VOLSPLINE_stb_SOURCES})
