@@ -15,9 +15,10 @@
 #   volspline::render  the Embree ray caster (and, with models, `view`'s picture pipeline).
 #   volspline::volspline  every component this build has (an interface target).
 #
-# A component's sources are named below by path; the core is what is left over, so a new file
-# lands in the core unless its layer or name is listed here. tests/package/check_core.cmake
-# (CI: .ci/core-only) builds the core and examples/consumer with nothing else to be found.
+# A component's sources are named below by path (VOLSPLINE_COMPONENT_RULES); the core is what is
+# left over, so a new file lands in the core unless its layer or name is listed there.
+# .ci/core-only (a CI stage) builds, installs and uses the core with nothing else to be found,
+# and fails if a core object reads a header of an optional package.
 
 option(VOLSPLINE_WITH_CGAL "Build volspline::cgal and volspline::models (CGAL, nlohmann-json, pugixml)" ON)
 option(VOLSPLINE_WITH_VTK "Build volspline::vtk, the VTU/VTK readers (VTK 9; needs VOLSPLINE_WITH_CGAL)" ON)
