@@ -420,13 +420,38 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             (is_inside(a + probe * ab) ? in_stretch : out_stretch) = mid;
           }
           const SheetCrossing& c = apart[in_stretch].first;
-          x.triangle = apart[in_stretch].second;
-          x.on_sheet = true;
-          x.lambda = c.lambda;
-          x.parameters = c.parameters;
-          x.extra = c.extra;
-          x.normal = c.normal;
-          placed = true;
+          // The stretches before and after the chosen crossing that no probe has looked at
+          // yet are probed unless it is where the superset's own crossing of the sheet the
+          // membership tests chose lies: a sheet near the edge whose chords miss it may lie
+          // inside S (the seam of a ball swept beside the line of its pole) while the sheet
+          // that bounds S there failed to converge; then the boundary is bisected below.
+          const auto sheet_of = [&](std::size_t t) { return sheet_of_triangle.empty() ? static_cast<int>(t) : sheet_of_triangle[t]; };
+          bool consistent = true;
+          if (!found || sheet_of(apart[in_stretch].second) != sheet_of(x.triangle)) {
+            if (out_stretch == apart.size()) {
+              const double after = 0.5 * (c.lambda + high);
+              if (is_inside(a + after * ab)) {
+                low = std::max(low, after);
+                consistent = false;
+              }
+            }
+            if (consistent && in_stretch == 0) {
+              const double before = 0.5 * (low + c.lambda);
+              if (!is_inside(a + before * ab)) {
+                high = std::min(high, before);
+                consistent = false;
+              }
+            }
+          }
+          if (consistent) {
+            x.triangle = apart[in_stretch].second;
+            x.on_sheet = true;
+            x.lambda = c.lambda;
+            x.parameters = c.parameters;
+            x.extra = c.extra;
+            x.normal = c.normal;
+            placed = true;
+          }
         }
       }
       if (!placed) {
