@@ -65,6 +65,7 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                      {"crossings_after_bisection", t.crossings_after_bisection},
                      {"crease_vertices", t.crease_vertices},
                      {"crease_flips", t.crease_flips},
+                     {"crease_repairs", t.crease_repairs},
                      {"seconds", {{"refine", t.seconds_refine}, {"classify", t.seconds_classify}, {"checks", t.seconds_checks}}}};
     j["closed"] = t.closed;
     j["oriented"] = t.oriented;

@@ -420,13 +420,42 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             (is_inside(a + probe * ab) ? in_stretch : out_stretch) = mid;
           }
           const SheetCrossing& c = apart[in_stretch].first;
-          x.triangle = apart[in_stretch].second;
-          x.on_sheet = true;
-          x.lambda = c.lambda;
-          x.parameters = c.parameters;
-          x.extra = c.extra;
-          x.normal = c.normal;
-          placed = true;
+          // Where the sheet of the superset crossing the membership tests chose gave no crossing
+          // in the bracket and another sheet's crossing is taken instead, the stretches before
+          // and after it that no probe has looked at yet are probed: a sheet near the edge whose
+          // chords miss it may lie inside S (the swept seam of a ball beside the line of its
+          // pole) while Newton on the sheet that bounds S there failed; then the boundary is
+          // bisected below. (Where no superset triangle crosses the edge at all the crossing is
+          // taken unprobed: probing those too cost 35 % more membership queries on Fig. 4.)
+          const auto sheet_of = [&](std::size_t t) { return sheet_of_triangle.empty() ? static_cast<int>(t) : sheet_of_triangle[t]; };
+          bool chosen_sheet_crossed = false;
+          for (const auto& on : apart) chosen_sheet_crossed = chosen_sheet_crossed || (found && sheet_of(on.second) == sheet_of(x.triangle));
+          bool consistent = true;
+          if (found && !chosen_sheet_crossed) {
+            if (out_stretch == apart.size()) {
+              const double after = 0.5 * (c.lambda + high);
+              if (is_inside(a + after * ab)) {
+                low = std::max(low, after);
+                consistent = false;
+              }
+            }
+            if (consistent && in_stretch == 0) {
+              const double before = 0.5 * (low + c.lambda);
+              if (!is_inside(a + before * ab)) {
+                high = std::min(high, before);
+                consistent = false;
+              }
+            }
+          }
+          if (consistent) {
+            x.triangle = apart[in_stretch].second;
+            x.on_sheet = true;
+            x.lambda = c.lambda;
+            x.parameters = c.parameters;
+            x.extra = c.extra;
+            x.normal = c.normal;
+            placed = true;
+          }
         }
       }
       if (!placed) {
@@ -516,321 +545,372 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // disk's way. The fan keeps the disk's border, so the surface stays closed and oriented.
   const double crease_cos = std::cos(options.crease_angle_degrees * std::numbers::pi / 180);
   const auto n_crossings = static_cast<int>(crossings.size());
-  std::vector<std::array<int, 3>> faces;
-  auto part_of = [&](int v) { return vertex_part[static_cast<std::size_t>(v)]; };
-  auto position_of = [&](int v) -> const Eigen::Vector3d& { return result.positions[static_cast<std::size_t>(v)]; };
-  // The fan around the crease point of one cell: false (nothing emitted) unless the cell's
-  // triangles `local` form one disk and the fan is valid.
-  using HalfSpace = std::pair<Eigen::Vector3d, double>;
-  auto crease_fan = [&](const std::vector<std::array<int, 3>>& local, const std::vector<int>& corners, const std::vector<HalfSpace>& region) {
-    // The disk's border: directed edges whose reverse is not in the cell, one loop.
-    std::set<std::pair<int, int>> directed;
-    for (const auto& t : local)
-      for (int j = 0; j < 3; ++j) directed.emplace(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]);
-    std::map<int, int> next;
-    std::size_t undirected = 0;
-    for (const auto& [p, q] : directed) {
-      if (!directed.count({q, p})) {
-        if (!next.emplace(p, q).second) return false;
-        ++undirected;
-      } else if (p < q) {
-        ++undirected;
-      }
-    }
-    if (next.size() < 3) return false;
-    if (static_cast<std::ptrdiff_t>(corners.size()) - static_cast<std::ptrdiff_t>(undirected) + static_cast<std::ptrdiff_t>(local.size()) != 1)
-      return false;
-    std::vector<int> loop{next.begin()->first};
-    while (loop.size() <= next.size()) {
-      const auto it = next.find(loop.back());
-      if (it == next.end()) return false;
-      if (it->second == loop.front()) break;
-      loop.push_back(it->second);
-    }
-    if (loop.size() != next.size()) return false;
-    // The tangent planes' meeting point nearest the centre: a point (three independent normals,
-    // a corner) or a line (two, a crease), clipped to the cell.
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (int v : corners) centre += position_of(v) / static_cast<double>(corners.size());
-    Eigen::MatrixX3d planes(static_cast<Eigen::Index>(corners.size()), 3);
-    Eigen::VectorXd offsets(static_cast<Eigen::Index>(corners.size()));
-    for (std::size_t j = 0; j < corners.size(); ++j) {
-      const Eigen::Vector3d& n = crossings[static_cast<std::size_t>(corners[j])].normal;
-      planes.row(static_cast<Eigen::Index>(j)) = n.transpose();
-      offsets(static_cast<Eigen::Index>(j)) = n.dot(position_of(corners[j]) - centre);
-    }
-    const Eigen::JacobiSVD<Eigen::MatrixX3d> svd(planes, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    const Eigen::Vector3d sigma = svd.singularValues();
-    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-    int rank = 0;
-    for (int i = 0; i < 3; ++i)
-      if (sigma(i) > 0.1 * sigma(0)) {
-        shift += svd.matrixV().col(i) * (svd.matrixU().col(i).dot(offsets) / sigma(i));
-        ++rank;
-      }
-    if (rank < 2) return false;
-    // Clipped to the region n . x <= c (each half-space moved in by `inset`).
-    const double inset = 1e-6 * grid.h;
-    Eigen::Vector3d apex = centre + shift;
-    if (rank == 2) {
-      const Eigen::Vector3d direction = svd.matrixV().col(2);
-      double s_low = -std::numeric_limits<double>::infinity(), s_high = std::numeric_limits<double>::infinity();
-      for (const auto& [n, c] : region) {
-        const double slope = n.dot(direction), room = c - inset - n.dot(apex);
-        if (std::abs(slope) < 1e-12) {
-          if (room <= 0) return false;
-        } else if (slope > 0) {
-          s_high = std::min(s_high, room / slope);
-        } else {
-          s_low = std::max(s_low, room / slope);
-        }
-      }
-      if (!(s_low <= s_high)) return false;
-      apex += std::clamp(0.0, s_low, s_high) * direction;
-    }
-    for (const auto& [n, c] : region)
-      if (!(n.dot(apex) <= c)) return false;
-    // Each fan triangle faces the way of the disk (area-weighted) or of the cell's triangle it
-    // replaces along the border (a sliver standing on the crease may face sideways): a fold of
-    // the fan would be a self-intersection.
-    Eigen::Vector3d disk_normal = Eigen::Vector3d::Zero();
-    for (const auto& t : local) disk_normal += (position_of(t[1]) - position_of(t[0])).cross(position_of(t[2]) - position_of(t[0]));
-    for (std::size_t j = 0; j < loop.size(); ++j) {
-      const int p = loop[j], q = loop[(j + 1) % loop.size()];
-      const Eigen::Vector3d fan_normal = (position_of(p) - apex).cross(position_of(q) - apex);
-      if (fan_normal.dot(disk_normal) > 0) continue;
+  // Crease fans and flips are made with floating-point positions and local checks only; where
+  // the result's self-intersection check (CGAL, exact) finds a pair of faces that a flip or a
+  // fan made, the faces are made again without that flip (or without the fans of that cell),
+  // a few rounds at most. The plain marching-tetrahedra faces stay closed and oriented.
+  const TriangleMesh crossing_vertices = result;
+  const std::vector<double> crossing_extra = out.extra;
+  const std::vector<int> crossing_source = out.source_vertex;
+  const std::vector<int> crossing_part = vertex_part;
+  constexpr std::uint64_t kNoFlip = ~std::uint64_t{0};
+  std::set<std::uint64_t> unfanned_cells, unflipped_edges;
+  const std::int64_t max_rounds = 4;
+  for (std::int64_t round = 0;; ++round) {
+    result = crossing_vertices;
+    out.extra = crossing_extra;
+    out.source_vertex = crossing_source;
+    vertex_part = crossing_part;
+    stats.crease_vertices = 0;
+    stats.crease_flips = 0;
+    std::vector<std::array<int, 3>> faces;
+    // Per face: its grid cell, whether a crease fan made it, and the edge a flip replaced.
+    std::vector<std::uint64_t> face_cell, face_flip;
+    std::vector<char> face_fan;
+    std::uint64_t current_cell = 0;
+    auto part_of = [&](int v) { return vertex_part[static_cast<std::size_t>(v)]; };
+    auto position_of = [&](int v) -> const Eigen::Vector3d& { return result.positions[static_cast<std::size_t>(v)]; };
+    // The fan around the crease point of one cell: false (nothing emitted) unless the cell's
+    // triangles `local` form one disk and the fan is valid.
+    using HalfSpace = std::pair<Eigen::Vector3d, double>;
+    auto crease_fan = [&](const std::vector<std::array<int, 3>>& local, const std::vector<int>& corners, const std::vector<HalfSpace>& region) {
+      // The disk's border: directed edges whose reverse is not in the cell, one loop.
+      std::set<std::pair<int, int>> directed;
       for (const auto& t : local)
-        for (int i = 0; i < 3; ++i)
-          if (t[static_cast<std::size_t>(i)] == p && t[static_cast<std::size_t>((i + 1) % 3)] == q &&
-              fan_normal.dot((position_of(t[1]) - position_of(t[0])).cross(position_of(t[2]) - position_of(t[0]))) <= 0)
-            return false;
-    }
-    // The crease point must lie on the boundary to half the superset's error: just outside it
-    // (along the disk's outward normal) is outside S and just inside it inside. A sheet's normal
-    // that does not belong to the boundary there (an interior sheet meeting it) fails this.
-    if (disk_normal.norm() > 0) {
-      const Eigen::Vector3d step = 0.25 * reach * disk_normal.normalized();
-      if (is_inside(apex + step) || !is_inside(apex - step)) return false;
-    }
-    std::size_t nearest = 0;
-    for (std::size_t j = 1; j < corners.size(); ++j)
-      if ((position_of(corners[j]) - apex).squaredNorm() < (position_of(corners[nearest]) - apex).squaredNorm()) nearest = j;
-    const int near_vertex = corners[nearest];
-    const int v = static_cast<int>(result.num_vertices());
-    result.add_vertex(apex, result.parameters[static_cast<std::size_t>(near_vertex)]);
-    if (!extra.empty()) out.extra.push_back(out.extra[static_cast<std::size_t>(near_vertex)]);
-    out.source_vertex.push_back(out.source_vertex[static_cast<std::size_t>(near_vertex)]);
-    vertex_part.push_back(vertex_part[static_cast<std::size_t>(near_vertex)]);
-    for (std::size_t j = 0; j < loop.size(); ++j) faces.push_back({v, loop[j], loop[(j + 1) % loop.size()]});
-    return true;
-  };
-  for (std::size_t first_polygon = 0; first_polygon < polygons.size();) {
-    std::size_t end_polygon = first_polygon;
-    while (end_polygon < polygons.size() && polygons[end_polygon].cell == polygons[first_polygon].cell) ++end_polygon;
-    std::vector<std::array<int, 3>> local;
-    std::vector<int> corners;
-    for (std::size_t q = first_polygon; q < end_polygon; ++q) {
-      const ContourPolygon& polygon = polygons[q];
-      const auto count = static_cast<std::size_t>(polygon.count);
-      // A quadrilateral is split along its shorter diagonal.
-      std::size_t first = 0;
-      if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
-                            (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
-        first = 1;
-      for (std::size_t j = 1; j + 1 < count; ++j)
-        local.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
-      for (std::size_t j = 0; j < count; ++j) corners.push_back(polygon.vertex[j]);
-    }
-    const std::uint64_t cell = polygons[first_polygon].cell;
-    const std::size_t cell_first = first_polygon;
-    first_polygon = end_polygon;
-    std::sort(corners.begin(), corners.end());
-    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-    bool crease = sheet_crossing && options.crease_angle_degrees > 0 && corners.size() >= 3;
-    double smallest_cos = 1;
-    for (std::size_t j = 0; crease && j < corners.size(); ++j) {
-      const ContourCrossing& xj = crossings[static_cast<std::size_t>(corners[j])];
-      if (!xj.on_sheet || xj.normal.isZero()) crease = false;
-      for (std::size_t i = 0; crease && i < j; ++i)
-        smallest_cos = std::min(smallest_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(corners[i])].normal)));
-    }
-    crease = crease && smallest_cos < crease_cos;
-    const auto index = grid.index(cell);
-    const Eigen::Vector3d low = grid.origin + grid.h * Eigen::Vector3d(static_cast<double>(index[0]), static_cast<double>(index[1]),
-                                                                     static_cast<double>(index[2]));
-    if (crease) {
-      std::vector<HalfSpace> box;
-      for (int d = 0; d < 3; ++d) {
-        const Eigen::Vector3d e = Eigen::Vector3d::Unit(d);
-        box.emplace_back(e, low(d) + grid.h);
-        box.emplace_back(-e, -low(d));
-      }
-      crease = crease_fan(local, corners, box);
-      if (crease) ++stats.crease_vertices;
-    }
-    if (crease) continue;
-    if (!(sheet_crossing && options.crease_angle_degrees > 0 && smallest_cos < crease_cos)) {
-      faces.insert(faces.end(), local.begin(), local.end());
-      continue;
-    }
-    // The cell's triangles are no disk or its fan folds: each tetrahedron's polygon alone.
-    for (std::size_t q = cell_first; q < first_polygon; ++q) {
-      const ContourPolygon& polygon = polygons[q];
-      const auto count = static_cast<std::size_t>(polygon.count);
-      std::vector<std::array<int, 3>> own;
-      std::size_t first = 0;
-      if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
-                            (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
-        first = 1;
-      for (std::size_t j = 1; j + 1 < count; ++j)
-        own.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
-      std::vector<int> own_corners(polygon.vertex.begin(), polygon.vertex.begin() + polygon.count);
-      std::sort(own_corners.begin(), own_corners.end());
-      bool sharp = true;
-      double own_cos = 1;
-      for (std::size_t j = 0; sharp && j < own_corners.size(); ++j) {
-        const ContourCrossing& xj = crossings[static_cast<std::size_t>(own_corners[j])];
-        if (!xj.on_sheet || xj.normal.isZero()) sharp = false;
-        for (std::size_t i = 0; sharp && i < j; ++i)
-          own_cos = std::min(own_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(own_corners[i])].normal)));
-      }
-      if (sharp && own_cos < crease_cos) {
-        // The tetrahedron's four faces, outward.
-        const auto& tet = kContourKuhnTetrahedra[static_cast<std::size_t>(polygon.tetrahedron)];
-        std::array<Eigen::Vector3d, 4> corner;
-        for (int i = 0; i < 4; ++i) {
-          const int c = tet[static_cast<std::size_t>(i)];
-          corner[static_cast<std::size_t>(i)] = low + grid.h * Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-        }
-        std::vector<HalfSpace> faces_of_tet;
-        for (int i = 0; i < 4; ++i) {
-          const Eigen::Vector3d& p0 = corner[static_cast<std::size_t>((i + 1) % 4)];
-          Eigen::Vector3d n = (corner[static_cast<std::size_t>((i + 2) % 4)] - p0).cross(corner[static_cast<std::size_t>((i + 3) % 4)] - p0);
-          if (n.dot(corner[static_cast<std::size_t>(i)] - p0) > 0) n = -n;
-          n.normalize();
-          faces_of_tet.emplace_back(n, n.dot(p0));
-        }
-        if (crease_fan(own, own_corners, faces_of_tet)) {
-          ++stats.crease_vertices;
-          continue;
+        for (int j = 0; j < 3; ++j) directed.emplace(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]);
+      std::map<int, int> next;
+      std::size_t undirected = 0;
+      for (const auto& [p, q] : directed) {
+        if (!directed.count({q, p})) {
+          if (!next.emplace(p, q).second) return false;
+          ++undirected;
+        } else if (p < q) {
+          ++undirected;
         }
       }
-      faces.insert(faces.end(), own.begin(), own.end());
-    }
-  }
-
-  // Edge flips across creases (extended marching cubes): an edge between two crossings on
-  // different sheets whose two triangles are fans around crease vertices x1, x2 becomes the
-  // edge x1 x2, so that the crease runs from crease vertex to crease vertex instead of being
-  // cut at every tetrahedron face. Only where both new triangles face the old ones' way and
-  // x1 x2 is not an edge yet.
-  if (stats.crease_vertices > 0) {
-    auto edge_key = [](int p, int q) { return (static_cast<std::uint64_t>(std::min(p, q)) << 32) | static_cast<std::uint32_t>(std::max(p, q)); };
-    std::unordered_map<std::uint64_t, std::array<int, 2>> edge_faces;
-    for (std::size_t f = 0; f < faces.size(); ++f)
-      for (int j = 0; j < 3; ++j) {
-        auto [it, fresh] = edge_faces.try_emplace(edge_key(faces[f][static_cast<std::size_t>(j)], faces[f][static_cast<std::size_t>((j + 1) % 3)]),
-                                                  std::array<int, 2>{static_cast<int>(f), -1});
-        if (!fresh) it->second[1] = it->second[1] < 0 ? static_cast<int>(f) : -2;
-      }
-    auto normal_of = [&](const std::array<int, 3>& f) {
-      const Eigen::Vector3d& p = result.positions[static_cast<std::size_t>(f[0])];
-      return Eigen::Vector3d((result.positions[static_cast<std::size_t>(f[1])] - p).cross(result.positions[static_cast<std::size_t>(f[2])] - p));
-    };
-    auto replace_face = [&](int p, int q, int from, int to) {
-      auto& pair = edge_faces.at(edge_key(p, q));
-      for (int& f : pair)
-        if (f == from) f = to;
-    };
-    std::vector<std::uint64_t> keys;
-    for (const auto& [k, f] : edge_faces)
-      if (f[1] >= 0) keys.push_back(k);
-    std::sort(keys.begin(), keys.end());
-    for (std::uint64_t k : keys) {
-      const auto u0 = static_cast<int>(k >> 32), v0 = static_cast<int>(k & 0xffffffffu);
-      if (u0 >= n_crossings || v0 >= n_crossings) continue;
-      const std::array<int, 2> pair = edge_faces.at(k);
-      if (pair[1] < 0) continue;
-      const ContourCrossing &xu = crossings[static_cast<std::size_t>(u0)], &xv = crossings[static_cast<std::size_t>(v0)];
-      if (xu.normal.isZero() || xv.normal.isZero() || std::abs(xu.normal.dot(xv.normal)) >= crease_cos) continue;
-      // f1 = (x1, u, v), f2 = (x2, v, u) after rotation.
-      auto rotate_to = [&](int f, int first) {
-        std::array<int, 3> t = faces[static_cast<std::size_t>(f)];
-        while (t[1] != first) std::rotate(t.begin(), t.begin() + 1, t.end());
-        return t;
-      };
-      const int f1 = pair[0], f2 = pair[1];
-      std::array<int, 3> t1 = faces[static_cast<std::size_t>(f1)], t2 = faces[static_cast<std::size_t>(f2)];
-      // Orient: t1 holds u -> v, t2 holds v -> u.
-      int u = u0, v = v0;
-      auto has_directed = [](const std::array<int, 3>& t, int p, int q) {
-        for (int j = 0; j < 3; ++j)
-          if (t[static_cast<std::size_t>(j)] == p && t[static_cast<std::size_t>((j + 1) % 3)] == q) return true;
+      if (next.size() < 3) return false;
+      if (static_cast<std::ptrdiff_t>(corners.size()) - static_cast<std::ptrdiff_t>(undirected) + static_cast<std::ptrdiff_t>(local.size()) != 1)
         return false;
-      };
-      if (!has_directed(t1, u, v)) std::swap(u, v);
-      if (!has_directed(t1, u, v) || !has_directed(t2, v, u)) continue;
-      t1 = rotate_to(f1, u);
-      t2 = rotate_to(f2, v);
-      const int x1 = t1[0], x2 = t2[0];
-      if (x1 < n_crossings || x2 < n_crossings || x1 == x2 || edge_faces.count(edge_key(x1, x2))) continue;
-      const std::array<int, 3> n1{x1, u, x2}, n2{x1, x2, v};
-      // The quadrilateral's way (area-weighted: one of the old triangles is often a sliver
-      // standing on the crease).
-      const Eigen::Vector3d old_normal = normal_of(t1) + normal_of(t2);
-      const Eigen::Vector3d m1 = normal_of(n1), m2 = normal_of(n2);
-      if (m1.dot(old_normal) <= 0 || m2.dot(old_normal) <= 0) continue;
-      faces[static_cast<std::size_t>(f1)] = n1;
-      faces[static_cast<std::size_t>(f2)] = n2;
-      replace_face(u, x2, f2, f1);
-      replace_face(v, x1, f1, f2);
-      edge_faces.erase(k);
-      edge_faces.emplace(edge_key(x1, x2), std::array<int, 2>{f1, f2});
-      ++stats.crease_flips;
-    }
-  }
-  // A face's part: that of its crossings (crease vertices lie on two sheets and do not vote);
-  // where they differ, the sheet whose normal is nearest the face's.
-  for (const auto& f : faces) {
-    const Eigen::Vector3d& p = result.positions[static_cast<std::size_t>(f[0])];
-    const Eigen::Vector3d normal = (result.positions[static_cast<std::size_t>(f[1])] - p).cross(result.positions[static_cast<std::size_t>(f[2])] - p);
-    int part = -1;
-    double best = -1;
-    for (int v : f) {
-      if (v >= n_crossings) continue;
-      const ContourCrossing& x = crossings[static_cast<std::size_t>(v)];
-      const double alignment = x.normal.isZero() || !(normal.norm() > 0) ? 0 : std::abs(x.normal.dot(normal.normalized()));
-      if (part < 0 || alignment > best) {
-        part = part_of(v);
-        best = alignment;
+      std::vector<int> loop{next.begin()->first};
+      while (loop.size() <= next.size()) {
+        const auto it = next.find(loop.back());
+        if (it == next.end()) return false;
+        if (it->second == loop.front()) break;
+        loop.push_back(it->second);
+      }
+      if (loop.size() != next.size()) return false;
+      // The tangent planes' meeting point nearest the centre: a point (three independent normals,
+      // a corner) or a line (two, a crease), clipped to the cell.
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (int v : corners) centre += position_of(v) / static_cast<double>(corners.size());
+      Eigen::MatrixX3d planes(static_cast<Eigen::Index>(corners.size()), 3);
+      Eigen::VectorXd offsets(static_cast<Eigen::Index>(corners.size()));
+      for (std::size_t j = 0; j < corners.size(); ++j) {
+        const Eigen::Vector3d& n = crossings[static_cast<std::size_t>(corners[j])].normal;
+        planes.row(static_cast<Eigen::Index>(j)) = n.transpose();
+        offsets(static_cast<Eigen::Index>(j)) = n.dot(position_of(corners[j]) - centre);
+      }
+      const Eigen::JacobiSVD<Eigen::MatrixX3d> svd(planes, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      const Eigen::Vector3d sigma = svd.singularValues();
+      Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+      int rank = 0;
+      for (int i = 0; i < 3; ++i)
+        if (sigma(i) > 0.1 * sigma(0)) {
+          shift += svd.matrixV().col(i) * (svd.matrixU().col(i).dot(offsets) / sigma(i));
+          ++rank;
+        }
+      if (rank < 2) return false;
+      // Clipped to the region n . x <= c (each half-space moved in by `inset`).
+      const double inset = 1e-6 * grid.h;
+      Eigen::Vector3d apex = centre + shift;
+      if (rank == 2) {
+        const Eigen::Vector3d direction = svd.matrixV().col(2);
+        double s_low = -std::numeric_limits<double>::infinity(), s_high = std::numeric_limits<double>::infinity();
+        for (const auto& [n, c] : region) {
+          const double slope = n.dot(direction), room = c - inset - n.dot(apex);
+          if (std::abs(slope) < 1e-12) {
+            if (room <= 0) return false;
+          } else if (slope > 0) {
+            s_high = std::min(s_high, room / slope);
+          } else {
+            s_low = std::max(s_low, room / slope);
+          }
+        }
+        if (!(s_low <= s_high)) return false;
+        apex += std::clamp(0.0, s_low, s_high) * direction;
+      }
+      for (const auto& [n, c] : region)
+        if (!(n.dot(apex) <= c)) return false;
+      // Each fan triangle faces the way of the disk (area-weighted) or of the cell's triangle it
+      // replaces along the border (a sliver standing on the crease may face sideways): a fold of
+      // the fan would be a self-intersection.
+      Eigen::Vector3d disk_normal = Eigen::Vector3d::Zero();
+      for (const auto& t : local) disk_normal += (position_of(t[1]) - position_of(t[0])).cross(position_of(t[2]) - position_of(t[0]));
+      for (std::size_t j = 0; j < loop.size(); ++j) {
+        const int p = loop[j], q = loop[(j + 1) % loop.size()];
+        const Eigen::Vector3d fan_normal = (position_of(p) - apex).cross(position_of(q) - apex);
+        if (fan_normal.dot(disk_normal) > 0) continue;
+        for (const auto& t : local)
+          for (int i = 0; i < 3; ++i)
+            if (t[static_cast<std::size_t>(i)] == p && t[static_cast<std::size_t>((i + 1) % 3)] == q &&
+                fan_normal.dot((position_of(t[1]) - position_of(t[0])).cross(position_of(t[2]) - position_of(t[0]))) <= 0)
+              return false;
+      }
+      // The crease point must lie on the boundary to half the superset's error: just outside it
+      // (along the disk's outward normal) is outside S and just inside it inside. A sheet's normal
+      // that does not belong to the boundary there (an interior sheet meeting it) fails this.
+      if (disk_normal.norm() > 0) {
+        const Eigen::Vector3d step = 0.25 * reach * disk_normal.normalized();
+        if (is_inside(apex + step) || !is_inside(apex - step)) return false;
+      }
+      std::size_t nearest = 0;
+      for (std::size_t j = 1; j < corners.size(); ++j)
+        if ((position_of(corners[j]) - apex).squaredNorm() < (position_of(corners[nearest]) - apex).squaredNorm()) nearest = j;
+      const int near_vertex = corners[nearest];
+      const int v = static_cast<int>(result.num_vertices());
+      result.add_vertex(apex, result.parameters[static_cast<std::size_t>(near_vertex)]);
+      if (!extra.empty()) out.extra.push_back(out.extra[static_cast<std::size_t>(near_vertex)]);
+      out.source_vertex.push_back(out.source_vertex[static_cast<std::size_t>(near_vertex)]);
+      vertex_part.push_back(vertex_part[static_cast<std::size_t>(near_vertex)]);
+      face_fan.resize(faces.size(), 0);
+      for (std::size_t j = 0; j < loop.size(); ++j) {
+        faces.push_back({v, loop[j], loop[(j + 1) % loop.size()]});
+        face_fan.push_back(1);
+      }
+      return true;
+    };
+    for (std::size_t first_polygon = 0; first_polygon < polygons.size();) {
+      face_cell.resize(faces.size(), current_cell);
+      current_cell = polygons[first_polygon].cell;
+      std::size_t end_polygon = first_polygon;
+      while (end_polygon < polygons.size() && polygons[end_polygon].cell == polygons[first_polygon].cell) ++end_polygon;
+      std::vector<std::array<int, 3>> local;
+      std::vector<int> corners;
+      for (std::size_t q = first_polygon; q < end_polygon; ++q) {
+        const ContourPolygon& polygon = polygons[q];
+        const auto count = static_cast<std::size_t>(polygon.count);
+        // A quadrilateral is split along its shorter diagonal.
+        std::size_t first = 0;
+        if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
+                              (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
+          first = 1;
+        for (std::size_t j = 1; j + 1 < count; ++j)
+          local.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
+        for (std::size_t j = 0; j < count; ++j) corners.push_back(polygon.vertex[j]);
+      }
+      const std::uint64_t cell = polygons[first_polygon].cell;
+      const std::size_t cell_first = first_polygon;
+      first_polygon = end_polygon;
+      std::sort(corners.begin(), corners.end());
+      corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+      bool crease = sheet_crossing && options.crease_angle_degrees > 0 && corners.size() >= 3;
+      double smallest_cos = 1;
+      for (std::size_t j = 0; crease && j < corners.size(); ++j) {
+        const ContourCrossing& xj = crossings[static_cast<std::size_t>(corners[j])];
+        if (!xj.on_sheet || xj.normal.isZero()) crease = false;
+        for (std::size_t i = 0; crease && i < j; ++i)
+          smallest_cos = std::min(smallest_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(corners[i])].normal)));
+      }
+      const bool fans_allowed = !unfanned_cells.count(cell);
+      crease = crease && smallest_cos < crease_cos && fans_allowed;
+      const auto index = grid.index(cell);
+      const Eigen::Vector3d low = grid.origin + grid.h * Eigen::Vector3d(static_cast<double>(index[0]), static_cast<double>(index[1]),
+                                                                       static_cast<double>(index[2]));
+      if (crease) {
+        std::vector<HalfSpace> box;
+        for (int d = 0; d < 3; ++d) {
+          const Eigen::Vector3d e = Eigen::Vector3d::Unit(d);
+          box.emplace_back(e, low(d) + grid.h);
+          box.emplace_back(-e, -low(d));
+        }
+        crease = crease_fan(local, corners, box);
+        if (crease) ++stats.crease_vertices;
+      }
+      if (crease) continue;
+      if (!(sheet_crossing && options.crease_angle_degrees > 0 && smallest_cos < crease_cos) || !fans_allowed) {
+        faces.insert(faces.end(), local.begin(), local.end());
+        continue;
+      }
+      // The cell's triangles are no disk or its fan folds: each tetrahedron's polygon alone.
+      for (std::size_t q = cell_first; q < first_polygon; ++q) {
+        const ContourPolygon& polygon = polygons[q];
+        const auto count = static_cast<std::size_t>(polygon.count);
+        std::vector<std::array<int, 3>> own;
+        std::size_t first = 0;
+        if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
+                              (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
+          first = 1;
+        for (std::size_t j = 1; j + 1 < count; ++j)
+          own.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
+        std::vector<int> own_corners(polygon.vertex.begin(), polygon.vertex.begin() + polygon.count);
+        std::sort(own_corners.begin(), own_corners.end());
+        bool sharp = true;
+        double own_cos = 1;
+        for (std::size_t j = 0; sharp && j < own_corners.size(); ++j) {
+          const ContourCrossing& xj = crossings[static_cast<std::size_t>(own_corners[j])];
+          if (!xj.on_sheet || xj.normal.isZero()) sharp = false;
+          for (std::size_t i = 0; sharp && i < j; ++i)
+            own_cos = std::min(own_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(own_corners[i])].normal)));
+        }
+        if (sharp && own_cos < crease_cos) {
+          // The tetrahedron's four faces, outward.
+          const auto& tet = kContourKuhnTetrahedra[static_cast<std::size_t>(polygon.tetrahedron)];
+          std::array<Eigen::Vector3d, 4> corner;
+          for (int i = 0; i < 4; ++i) {
+            const int c = tet[static_cast<std::size_t>(i)];
+            corner[static_cast<std::size_t>(i)] = low + grid.h * Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+          }
+          std::vector<HalfSpace> faces_of_tet;
+          for (int i = 0; i < 4; ++i) {
+            const Eigen::Vector3d& p0 = corner[static_cast<std::size_t>((i + 1) % 4)];
+            Eigen::Vector3d n = (corner[static_cast<std::size_t>((i + 2) % 4)] - p0).cross(corner[static_cast<std::size_t>((i + 3) % 4)] - p0);
+            if (n.dot(corner[static_cast<std::size_t>(i)] - p0) > 0) n = -n;
+            n.normalize();
+            faces_of_tet.emplace_back(n, n.dot(p0));
+          }
+          if (crease_fan(own, own_corners, faces_of_tet)) {
+            ++stats.crease_vertices;
+            continue;
+          }
+        }
+        faces.insert(faces.end(), own.begin(), own.end());
       }
     }
-    result.add_triangle(f[0], f[1], f[2], part < 0 ? part_of(f[0]) : part);
-  }
-  // Crossings inside a cell's disk that a crease fan replaced are used by no face: dropped.
-  std::vector<int> renumber(result.num_vertices(), -1);
-  for (const auto& t : result.triangles)
-    for (int v : t) renumber[static_cast<std::size_t>(v)] = 0;
-  int used = 0;
-  for (std::size_t v = 0; v < renumber.size(); ++v)
-    if (renumber[v] == 0) {
-      renumber[v] = used;
-      const auto to = static_cast<std::size_t>(used++);
-      result.positions[to] = result.positions[v];
-      result.parameters[to] = result.parameters[v];
-      if (!out.extra.empty()) out.extra[to] = out.extra[v];
-      out.source_vertex[to] = out.source_vertex[v];
+
+    // Edge flips across creases (extended marching cubes): an edge between two crossings on
+    // different sheets whose two triangles are fans around crease vertices x1, x2 becomes the
+    // edge x1 x2, so that the crease runs from crease vertex to crease vertex instead of being
+    // cut at every tetrahedron face. Only where both new triangles face the old ones' way and
+    // x1 x2 is not an edge yet.
+    face_cell.resize(faces.size(), current_cell);
+    face_fan.resize(faces.size(), 0);
+    face_flip.assign(faces.size(), kNoFlip);
+    if (stats.crease_vertices > 0) {
+      auto edge_key = [](int p, int q) { return (static_cast<std::uint64_t>(std::min(p, q)) << 32) | static_cast<std::uint32_t>(std::max(p, q)); };
+      std::unordered_map<std::uint64_t, std::array<int, 2>> edge_faces;
+      for (std::size_t f = 0; f < faces.size(); ++f)
+        for (int j = 0; j < 3; ++j) {
+          auto [it, fresh] = edge_faces.try_emplace(edge_key(faces[f][static_cast<std::size_t>(j)], faces[f][static_cast<std::size_t>((j + 1) % 3)]),
+                                                    std::array<int, 2>{static_cast<int>(f), -1});
+          if (!fresh) it->second[1] = it->second[1] < 0 ? static_cast<int>(f) : -2;
+        }
+      auto normal_of = [&](const std::array<int, 3>& f) {
+        const Eigen::Vector3d& p = result.positions[static_cast<std::size_t>(f[0])];
+        return Eigen::Vector3d((result.positions[static_cast<std::size_t>(f[1])] - p).cross(result.positions[static_cast<std::size_t>(f[2])] - p));
+      };
+      auto replace_face = [&](int p, int q, int from, int to) {
+        auto& pair = edge_faces.at(edge_key(p, q));
+        for (int& f : pair)
+          if (f == from) f = to;
+      };
+      std::vector<std::uint64_t> keys;
+      for (const auto& [k, f] : edge_faces)
+        if (f[1] >= 0) keys.push_back(k);
+      std::sort(keys.begin(), keys.end());
+      for (std::uint64_t k : keys) {
+        const auto u0 = static_cast<int>(k >> 32), v0 = static_cast<int>(k & 0xffffffffu);
+        if (u0 >= n_crossings || v0 >= n_crossings || unflipped_edges.count(k)) continue;
+        const std::array<int, 2> pair = edge_faces.at(k);
+        if (pair[1] < 0) continue;
+        const ContourCrossing &xu = crossings[static_cast<std::size_t>(u0)], &xv = crossings[static_cast<std::size_t>(v0)];
+        if (xu.normal.isZero() || xv.normal.isZero() || std::abs(xu.normal.dot(xv.normal)) >= crease_cos) continue;
+        // f1 = (x1, u, v), f2 = (x2, v, u) after rotation.
+        auto rotate_to = [&](int f, int first) {
+          std::array<int, 3> t = faces[static_cast<std::size_t>(f)];
+          while (t[1] != first) std::rotate(t.begin(), t.begin() + 1, t.end());
+          return t;
+        };
+        const int f1 = pair[0], f2 = pair[1];
+        std::array<int, 3> t1 = faces[static_cast<std::size_t>(f1)], t2 = faces[static_cast<std::size_t>(f2)];
+        // Orient: t1 holds u -> v, t2 holds v -> u.
+        int u = u0, v = v0;
+        auto has_directed = [](const std::array<int, 3>& t, int p, int q) {
+          for (int j = 0; j < 3; ++j)
+            if (t[static_cast<std::size_t>(j)] == p && t[static_cast<std::size_t>((j + 1) % 3)] == q) return true;
+          return false;
+        };
+        if (!has_directed(t1, u, v)) std::swap(u, v);
+        if (!has_directed(t1, u, v) || !has_directed(t2, v, u)) continue;
+        t1 = rotate_to(f1, u);
+        t2 = rotate_to(f2, v);
+        const int x1 = t1[0], x2 = t2[0];
+        if (x1 < n_crossings || x2 < n_crossings || x1 == x2 || edge_faces.count(edge_key(x1, x2))) continue;
+        const std::array<int, 3> n1{x1, u, x2}, n2{x1, x2, v};
+        // The quadrilateral's way (area-weighted: one of the old triangles is often a sliver
+        // standing on the crease).
+        const Eigen::Vector3d old_normal = normal_of(t1) + normal_of(t2);
+        const Eigen::Vector3d m1 = normal_of(n1), m2 = normal_of(n2);
+        if (m1.dot(old_normal) <= 0 || m2.dot(old_normal) <= 0) continue;
+        faces[static_cast<std::size_t>(f1)] = n1;
+        faces[static_cast<std::size_t>(f2)] = n2;
+        face_flip[static_cast<std::size_t>(f1)] = face_flip[static_cast<std::size_t>(f2)] = k;
+        replace_face(u, x2, f2, f1);
+        replace_face(v, x1, f1, f2);
+        edge_faces.erase(k);
+        edge_faces.emplace(edge_key(x1, x2), std::array<int, 2>{f1, f2});
+        ++stats.crease_flips;
+      }
     }
-  if (used < static_cast<int>(renumber.size())) {
-    result.positions.resize(static_cast<std::size_t>(used));
-    result.parameters.resize(static_cast<std::size_t>(used));
-    if (!out.extra.empty()) out.extra.resize(static_cast<std::size_t>(used));
-    out.source_vertex.resize(static_cast<std::size_t>(used));
-    for (auto& t : result.triangles)
-      for (int& v : t) v = renumber[static_cast<std::size_t>(v)];
+    // A face's part: that of its crossings (crease vertices lie on two sheets and do not vote);
+    // where they differ, the sheet whose normal is nearest the face's.
+    for (const auto& f : faces) {
+      const Eigen::Vector3d& p = result.positions[static_cast<std::size_t>(f[0])];
+      const Eigen::Vector3d normal = (result.positions[static_cast<std::size_t>(f[1])] - p).cross(result.positions[static_cast<std::size_t>(f[2])] - p);
+      int part = -1;
+      double best = -1;
+      for (int v : f) {
+        if (v >= n_crossings) continue;
+        const ContourCrossing& x = crossings[static_cast<std::size_t>(v)];
+        const double alignment = x.normal.isZero() || !(normal.norm() > 0) ? 0 : std::abs(x.normal.dot(normal.normalized()));
+        if (part < 0 || alignment > best) {
+          part = part_of(v);
+          best = alignment;
+        }
+      }
+      result.add_triangle(f[0], f[1], f[2], part < 0 ? part_of(f[0]) : part);
+    }
+    // Crossings inside a cell's disk that a crease fan replaced are used by no face: dropped.
+    std::vector<int> renumber(result.num_vertices(), -1);
+    for (const auto& t : result.triangles)
+      for (int v : t) renumber[static_cast<std::size_t>(v)] = 0;
+    int used = 0;
+    for (std::size_t v = 0; v < renumber.size(); ++v)
+      if (renumber[v] == 0) {
+        renumber[v] = used;
+        const auto to = static_cast<std::size_t>(used++);
+        result.positions[to] = result.positions[v];
+        result.parameters[to] = result.parameters[v];
+        if (!out.extra.empty()) out.extra[to] = out.extra[v];
+        out.source_vertex[to] = out.source_vertex[v];
+      }
+    if (used < static_cast<int>(renumber.size())) {
+      result.positions.resize(static_cast<std::size_t>(used));
+      result.parameters.resize(static_cast<std::size_t>(used));
+      if (!out.extra.empty()) out.extra.resize(static_cast<std::size_t>(used));
+      out.source_vertex.resize(static_cast<std::size_t>(used));
+      for (auto& t : result.triangles)
+        for (int& v : t) v = renumber[static_cast<std::size_t>(v)];
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> intersecting;
+    measure_trimmed_boundary(result, stats, &intersecting);
+    if (intersecting.empty() || round + 1 >= max_rounds) break;
+    // Undo the flips that made a face of an intersecting pair; where neither face is flipped,
+    // drop the fans of the cells of the fan faces among them.
+    bool changed = false;
+    for (const auto& [f, g] : intersecting) {
+      const bool flipped = face_flip[f] != kNoFlip || face_flip[g] != kNoFlip;
+      for (const std::size_t h : {f, g}) {
+        if (flipped) {
+          if (face_flip[h] != kNoFlip) changed = unflipped_edges.insert(face_flip[h]).second || changed;
+        } else if (face_fan[h]) {
+          changed = unfanned_cells.insert(face_cell[h]).second || changed;
+        }
+      }
+    }
+    if (!changed) break;
+    ++stats.crease_repairs;
   }
   stats.membership_queries = queries;
-  measure_trimmed_boundary(result, stats);
   stats.seconds_checks = seconds_since(checks_start);
   if (options.progress) options.progress->end_phase();
   return out;

@@ -254,7 +254,8 @@ enum class Verdict { KeepAsIs, Flip, Inside, Outside, Undecided };
 
 }  // namespace
 
-void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& stats) {
+void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& stats,
+                              std::vector<std::pair<std::size_t, std::size_t>>* intersecting_faces) {
   validate_mesh(mesh);
   stats.result_triangles = static_cast<std::int64_t>(mesh.num_triangles());
   const EdgeStatistics edges = edge_statistics(mesh);
@@ -309,6 +310,9 @@ void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& s
     PMP::self_intersections(check.faces(), check, std::back_inserter(pairs));
     stats.self_intersecting_pairs = static_cast<std::int64_t>(pairs.size());
     stats.self_intersection_free = pairs.empty();
+    // The soup's polygons became the mesh's faces in order (orienting reverses, never reorders).
+    if (intersecting_faces)
+      for (const auto& [f, g] : pairs) intersecting_faces->emplace_back(static_cast<std::size_t>(f), static_cast<std::size_t>(g));
   }
 }
 

@@ -32,6 +32,17 @@ TEST(TrimmedSolidBoundary, FoldedCubeKeepsItsBulge) {
         top = std::max(top, x[2]);
       }
   ASSERT_GT(top, 0.5 + 0.01) << "the example's bulge";
+  // Every vertex but the crease points and the crossings placed by bisection lies on its sheet:
+  // V at its (u, v, w) is the vertex, to Newton's tolerance (and the clamping of crossings
+  // to 1e-6 of a grid edge from its ends).
+  std::int64_t off_sheet = 0;
+  for (std::size_t v = 0; v < b.mesh.num_vertices(); ++v) {
+    const Eigen::Vector3d& p = b.mesh.parameters[v];
+    const Eigen::VectorXd x = cube.evaluate({p.x(), p.y(), p.z()});
+    off_sheet += (Eigen::Vector3d(x[0], x[1], x[2]) - b.mesh.positions[v]).norm() > 1e-7;
+  }
+  EXPECT_GT(st.crossings_on_sheets, 0);
+  EXPECT_LE(off_sheet, st.crease_vertices + st.crossings_off_superset);
   double mesh_top = -1;
   for (const auto& x : b.mesh.positions) mesh_top = std::max(mesh_top, x.z());
   EXPECT_NEAR(mesh_top, top, 0.01);

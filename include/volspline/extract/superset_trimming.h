@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -56,6 +57,8 @@ struct SupersetTrimmingStats {
   double cell_size = 0;
   std::int64_t grid_cells = 0, grid_corners = 0, crossings_off_superset = 0, crossings_on_sheets = 0,
                crossings_after_bisection = 0, crease_vertices = 0, crease_flips = 0;
+  /// Contouring: rounds in which crease flips or fans that made self-intersecting faces were undone.
+  std::int64_t crease_repairs = 0;
 };
 
 /// Where on the true surface a point of the superset is: for superset triangle `triangle` and
@@ -78,8 +81,10 @@ struct TrimmedBoundary {
 
 /// Fills the result half of `stats` for `mesh`: triangles, closed, oriented, boundary and
 /// non-manifold edges (and where it is open), components, volume, self-intersections (CGAL's
-/// exact predicates on the doubles). \throw InvalidInput for a malformed mesh.
-void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& stats);
+/// exact predicates on the doubles), and, if asked, the self-intersecting pairs of triangle
+/// indices. \throw InvalidInput for a malformed mesh.
+void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& stats,
+                              std::vector<std::pair<std::size_t, std::size_t>>* intersecting_faces = nullptr);
 
 /// Trims `superset` (any orientation, non-manifold edges allowed) to the boundary of S.
 /// `extra` is an optional per-vertex parameter (empty or one per vertex). The membership test

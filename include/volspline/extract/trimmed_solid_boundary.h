@@ -2,7 +2,9 @@
 // The true boundary of a folded trivariate solid V([0,1]^3) (or a union of volumes): the faces
 // and the surface J = 0 (Joy–Duchaineau 1999, extract/solid_boundary.h) are a superset of it,
 // with parts inside V where the solid folds over itself; contouring the certified membership in
-// V (SplineImage<3>) near that superset keeps only the boundary (extract/image_contouring.h).
+// V (SplineImage<3>) near that superset keeps only the boundary (extract/image_contouring.h),
+// each vertex placed on its face or J = 0 by Newton on the sheet's equations
+// (extract/sheet_line_crossing.h).
 // docs/envelopes.md, "The true boundary of a folded solid".
 #include <vector>
 
