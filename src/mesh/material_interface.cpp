@@ -152,13 +152,6 @@ std::size_t MaterialInterface::sample_count() const { return samples_->midpoints
 
 double MaterialInterface::level(const Eigen::Vector3d& x, Eigen::Vector3d* normal_out) const {
   thread_local std::vector<std::size_t> found;
-  samples_->nearest->nearest(x, samples_->local, found);
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), direction = Eigen::Vector3d::Zero();
-  for (std::size_t s : found) {
-    centroid += samples_->midpoints[s];
-    direction += samples_->directions[s];
-  }
-  centroid /= static_cast<double>(found.size());
   // The plane that separates the pairs' points of 0 from those of 1 with the widest gap (a local
   // hard-margin classifier): the gap along a unit normal n is min n·(points of 1) − max n·(points
   // of 0). Search starts from the mean direction of the pairs — a pair crosses the interface with
@@ -176,31 +169,57 @@ double MaterialInterface::level(const Eigen::Vector3d& x, Eigen::Vector3d* norma
     if (middle != nullptr) *middle = (highest_0 + lowest_1) / 2;
     return lowest_1 - highest_0;
   };
-  Eigen::Vector3d normal = direction.norm() > 0 ? direction.normalized() : Eigen::Vector3d::UnitX();
-  double best = gap(normal, nullptr);
-  for (double step = 0.2; step > 0.002; step /= 2) {
-    for (int round = 0; round < 4; ++round) {
-      const Eigen::Vector3d t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
-      bool improved = false;
-      for (const Eigen::Vector3d& move : {t1, Eigen::Vector3d(-t1), t2, Eigen::Vector3d(-t2)}) {
-        const Eigen::Vector3d candidate = (normal + step * move).normalized();
-        const double g = gap(candidate, nullptr);
-        if (g > best) {
-          best = g;
-          normal = candidate;
-          improved = true;
+  const auto widest = [&](Eigen::Vector3d normal) {
+    double best = gap(normal, nullptr);
+    for (double step = 0.2; step > 1e-4; step /= 2) {
+      for (int round = 0; round < 4; ++round) {
+        const Eigen::Vector3d t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+        bool improved = false;
+        for (const Eigen::Vector3d& move : {t1, Eigen::Vector3d(-t1), t2, Eigen::Vector3d(-t2)}) {
+          const Eigen::Vector3d candidate = (normal + step * move).normalized();
+          const double g = gap(candidate, nullptr);
+          if (g > best) {
+            best = g;
+            normal = candidate;
+            improved = true;
+          }
         }
+        if (!improved) break;
       }
-      if (!improved) break;
     }
+    return normal;
+  };
+  const auto mean_direction = [&] {
+    Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+    for (std::size_t s : found) direction += samples_->directions[s];
+    return direction.norm() > 0 ? Eigen::Vector3d(direction.normalized()) : Eigen::Vector3d::UnitX();
+  };
+  // The neighbourhood: local_samples pairs, doubled while the plane still separates them all (a
+  // planar interface is found from as many pairs as it has, up to kMostPairs; a curved one from
+  // as many as a plane separates).
+  constexpr std::size_t kMostPairs = 1536;
+  std::size_t count = static_cast<std::size_t>(samples_->local);
+  samples_->nearest->nearest(x, static_cast<int>(count), found);
+  Eigen::Vector3d normal = widest(mean_direction());
+  double middle = 0;
+  bool separated = gap(normal, &middle) > 0;
+  while (separated && count < kMostPairs && count < samples_->midpoints.size()) {
+    count *= 2;
+    samples_->nearest->nearest(x, static_cast<int>(count), found);
+    const Eigen::Vector3d wider = widest(normal);
+    double wider_middle = 0;
+    if (!(gap(wider, &wider_middle) > 0)) break;
+    normal = wider;
+    middle = wider_middle;
   }
   if (normal_out != nullptr) *normal_out = normal;
-  // The offset: the middle of the gap, where the plane separates these points as their labels do
-  // and lies as far from both as it can; without a gap (a curved interface, points of the two
-  // labels mixed), the centroid of the midpoints.
-  double middle = 0;
-  const double offset = gap(normal, &middle) > 0 ? middle : normal.dot(centroid);
-  return normal.dot(x) - offset;
+  if (separated) return normal.dot(x) - middle;
+  // No plane separates even the nearest pairs (a sharply curved interface, labels mixed): the
+  // plane through the centroid of their midpoints.
+  samples_->nearest->nearest(x, samples_->local, found);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (std::size_t s : found) centroid += samples_->midpoints[s] / static_cast<double>(found.size());
+  return normal.dot(x - centroid);
 }
 
 }  // namespace volspline

@@ -414,6 +414,7 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
   if (!(options.spread > 0 && options.spread < 0.5)) {
     throw InvalidInput("spread " + format_double(options.spread) + " is outside (0, 0.5)", "spread");
   }
+  if (!(options.lean >= 0 && options.lean <= 1)) throw InvalidInput("lean " + format_double(options.lean) + " is outside [0, 1]", "lean");
   validate_tetrahedral_mesh(domain);
   const int n = degree;
   const std::size_t num_points = domain.points.size();
@@ -446,7 +447,7 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
   std::vector<int> halvings(num_points, 0);
   // Sub-knot l at distance spread * e * (n + l) / (2n): distinct distances, so no two sub-knots
   // of a cloud are images of each other under the cloud's symmetry. A boundary vertex's
-  // sub-knots lean from the outward pseudo-normal N by tan(angle) = 0.5 / 2^halvings
+  // sub-knots lean from the outward pseudo-normal N by tan(angle) = options.lean / 2^halvings
   // around it, so they stay in the exterior cone of edges and corners of up to about 53°
   // between N and the faces, and leave N as the cone narrows with each halving.
   const auto place = [&](int v) {
@@ -464,7 +465,7 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
       normal = p - centre / (4.0 * incident[v].size());
     }
     normal.normalize();
-    const double lean = std::ldexp(0.5, -halvings[v]);
+    const double lean = std::ldexp(options.lean, -halvings[v]);
     for (int l = 1; l <= n; ++l) {
       const double distance = scale * (n + l) / (2.0 * n);
       Eigen::Vector3d d;

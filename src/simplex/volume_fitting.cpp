@@ -409,6 +409,8 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
   const VolumeData& fitted = own_side ? *own_side : data;
   KnotCloudOptions cloud_options;
   cloud_options.spread = options.spread;
+  // An interface meets ∂Ω in wedges as sharp as its angle with the boundary: sub-knots on the ray.
+  if (own_side) cloud_options.lean = 0;
   KnotClouds clouds = generate_knot_clouds(domain.mesh, options.degree, cloud_options);
   clock.done("knot clouds");
   statistics.data_points = data.size();
