@@ -14,7 +14,7 @@ namespace {
 const Eigen::Vector3d kSplitNormal = Eigen::Vector3d(1, 0.3, 0).normalized();
 double split_plane_level(const Eigen::Vector3d& x) { return kSplitNormal.dot(x - Eigen::Vector3d(0.55, 0, 0)); }
 
-double tetrahedron_volume(const TetrahedralMesh& mesh, const std::array<int, 4>& t) {
+double split_piece_volume(const TetrahedralMesh& mesh, const std::array<int, 4>& t) {
   const auto& p = mesh.points;
   return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).dot(p[t[3]] - p[t[0]]) / 6;
 }
@@ -45,7 +45,7 @@ TEST(InterfaceSplit, PiecesTileEachSideOfAPlaneExactlyAndTheSidesShareNoPoint) {
     std::array<double, 2> volume{0, 0};
     for (std::size_t t = 0; t < split.side.size(); ++t) {
       const auto& tet = split.mesh.tetrahedra[t];
-      volume[static_cast<std::size_t>(split.side[t])] += tetrahedron_volume(split.mesh, tet);
+      volume[static_cast<std::size_t>(split.side[t])] += split_piece_volume(split.mesh, tet);
       for (int v : tet) {
         const double level = split_plane_level(split.mesh.points[static_cast<std::size_t>(v)]);
         if (split.side[t] == 0) {
@@ -76,20 +76,6 @@ TEST(InterfaceSplit, AMeshThePlaneMissesIsKeptWhole) {
   EXPECT_EQ(split.cut_tetrahedra, 0u);
   for (int s : split.side) EXPECT_EQ(s, 0);
   EXPECT_THROW(split_at_interface(cube, std::vector<double>(3, 0.0), normal), InvalidInput);
-}
-
-TEST(TetrahedralMesh, PartsAreTheTetrahedraConnectedThroughSharedPoints) {
-  TetrahedralMesh two = test_support::kuhn_cube();
-  const std::size_t n = two.points.size();
-  for (std::size_t i = 0; i < n; ++i) two.points.push_back(two.points[i] + Eigen::Vector3d(1, 0, 0));  // a touching copy
-  const std::size_t tets = two.tetrahedra.size();
-  for (std::size_t t = 0; t < tets; ++t) {
-    std::array<int, 4> copy = two.tetrahedra[t];
-    for (int& v : copy) v += static_cast<int>(n);
-    two.tetrahedra.push_back(copy);
-  }
-  const std::vector<int> parts = tetrahedron_parts(two);
-  for (std::size_t t = 0; t < parts.size(); ++t) EXPECT_EQ(parts[t], t < tets ? 0 : 1);
 }
 
 }  // namespace
