@@ -43,6 +43,7 @@ struct FitRequest {
   bool baselines = false;
   double fairing = ControlVectorFitOptions{}.fairing;
   double jump = 0;
+  std::string layout = "farthest";
 };
 
 // The N and tilt of two-material:N[:TILT] (tilt 0 when absent); N 0 for a malformed name.
@@ -216,6 +217,9 @@ void fit_file(const FitRequest& r) {
   VolumeFitOptions options;
   options.degree = r.degree;
   options.domain.primary_knots = r.primary_knots;
+  if (r.layout != "farthest" && r.layout != "lattice")
+    throw InvalidInput("expected --primary-knots-layout farthest or lattice, got '" + r.layout + "'", "--primary-knots-layout");
+  options.domain.lattice = r.layout == "lattice";
   if (r.primary_knots < 0) throw InvalidInput("expected a positive number of primary knots, got " + std::to_string(r.primary_knots), "--primary-knots");
   if (!(r.error >= 0)) throw InvalidInput("expected an error bound >= 0, got " + format_double(r.error), "--error");
   if (r.max_tetrahedra < 0) throw InvalidInput("expected a tetrahedron budget >= 0, got " + std::to_string(r.max_tetrahedra), "--max-tetrahedra");
@@ -327,6 +331,9 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--degree", r->degree, "the degree n, 1 to 5 (default 2)");
   cmd->add_option("--attributes", r->attributes, "the attributes to fit, comma-separated (default: all)");
   cmd->add_option("--primary-knots", r->primary_knots, "the number of primary knots (domain vertices; default: points / (2 (n+1)(n+2)), points / 24 for degree 2)");
+  cmd->add_option("--primary-knots-layout", r->layout,
+                  "farthest (default: data points by farthest-point sampling) or lattice (a body-centred cubic lattice over "
+                  "the bounding box: congruent tetrahedra, better on grid-like smooth data; docs/fitting.md)");
   cmd->add_option("--error", r->error,
                   "adaptive refinement (Hua-He-Qin 5.4): split every tetrahedron whose RMS normalised field error is above E (default 0: none)");
   cmd->add_option("--max-tetrahedra", r->max_tetrahedra, "the refinement's tetrahedron budget (default: 8 times the initial domain)");

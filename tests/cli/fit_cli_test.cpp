@@ -95,6 +95,7 @@ TEST_F(FitCli, BadInputExitsWithTwoNamingTheProblem) {
   expect_bad("fit " + path("data.csv") + " --fairing -0.1", "--fairing");
   expect_bad("fit " + path("data.csv") + " --fairing inf", "--fairing");
   expect_bad("fit " + path("data.csv") + " --jump -1", "--jump");
+  expect_bad("fit " + path("data.csv") + " --primary-knots-layout grid", "--primary-knots-layout");
   expect_bad("fit two-material:9:0.37 --jump 2", "--jump: the jump 2.000000 splits the data into 1 regions");
   expect_bad("fit two-material:9:x", "two-material:N:TILT");
 }
