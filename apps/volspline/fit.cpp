@@ -10,6 +10,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -41,13 +42,40 @@ struct FitRequest {
   std::string knots = "fixed";
   bool baselines = false;
   double fairing = ControlVectorFitOptions{}.fairing;
+  double jump = 0;
+  std::string layout = "farthest";
 };
+
+// The N and tilt of two-material:N[:TILT] (tilt 0 when absent); N 0 for a malformed name.
+std::pair<int, double> two_material_parameters(const std::string& name) {
+  const std::string rest = name.substr(std::string("two-material:").size());
+  const std::size_t colon = rest.find(':');
+  int n = 0;
+  double tilt = 0;
+  try {
+    std::size_t used = 0;
+    const std::string count = rest.substr(0, colon);
+    n = std::stoi(count, &used);
+    if (used != count.size()) n = 0;
+    if (colon != std::string::npos) {
+      const std::string t = rest.substr(colon + 1);
+      tilt = std::stod(t, &used);
+      if (used != t.size() || !std::isfinite(tilt)) n = 0;
+    }
+  } catch (const std::exception&) {
+    n = 0;
+  }
+  return {n, tilt};
+}
 
 // The true field of generated data (the names data_of accepts), for --baselines; empty for files.
 std::function<Eigen::VectorXd(const Eigen::Vector3d&)> truth_of(const std::string& name) {
   if (name.rfind("marschner-lobb:", 0) == 0)
     return [](const Eigen::Vector3d& x) { return Eigen::VectorXd::Constant(1, marschner_lobb(x)); };
-  if (name.rfind("two-material:", 0) == 0) return [](const Eigen::Vector3d& x) { return Eigen::VectorXd::Constant(1, two_material(x)); };
+  if (name.rfind("two-material:", 0) == 0) {
+    const double tilt = two_material_parameters(name).second;
+    return [tilt](const Eigen::Vector3d& x) { return Eigen::VectorXd::Constant(1, two_material(x, tilt)); };
+  }
   return {};
 }
 
@@ -71,7 +99,13 @@ nlohmann::json baselines_json(const std::vector<MethodError>& errors) {
 }
 
 VolumeData data_of(const std::string& name) {
-  for (const std::string kind : {"marschner-lobb:", "two-material:"}) {
+  if (name.rfind("two-material:", 0) == 0) {
+    const auto [n, tilt] = two_material_parameters(name);
+    if (n < 2 || n > 400)
+      throw InvalidInput("expected two-material:N or two-material:N:TILT with N in 2..400 and a finite tilt, got '" + name + "'", "DATA");
+    return two_material_data(n, tilt);
+  }
+  for (const std::string kind : {"marschner-lobb:"}) {
     if (name.rfind(kind, 0) != 0) continue;
     const std::string count = name.substr(kind.size());
     int n = 0;
@@ -83,7 +117,7 @@ VolumeData data_of(const std::string& name) {
       n = 0;
     }
     if (n < 2 || n > 400) throw InvalidInput("expected " + kind + "N with N in 2..400, got '" + name + "'", "DATA");
-    return kind == "marschner-lobb:" ? marschner_lobb_data(n) : two_material_data(n);
+    return marschner_lobb_data(n);
   }
   return read_volume_data(name);
 }
@@ -144,6 +178,15 @@ nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& 
                             {"sweeps_undone", k.undone_sweeps},
                             {"field_normalised_mean_square_before", k.before},
                             {"field_normalised_mean_square_after", k.after}};
+  const SharpFeatureReport& sharp = s.sharp_features;
+  if (sharp.enabled)
+    j["sharp_features"] = {{"region_points", sharp.region_points},
+                           {"jump_pairs", sharp.jump_edges},
+                           {"interface_samples", sharp.interface_samples},
+                           {"cut_tetrahedra", sharp.cut_tetrahedra},
+                           {"snapped_points", sharp.snapped_points},
+                           {"interface_points", sharp.interface_points},
+                           {"points_across_interface", sharp.points_across}};
   const AdaptiveRefinementReport& r = s.refinement;
   nlohmann::json rounds = nlohmann::json::array();
   for (const auto& round : r.rounds)
@@ -174,6 +217,9 @@ void fit_file(const FitRequest& r) {
   VolumeFitOptions options;
   options.degree = r.degree;
   options.domain.primary_knots = r.primary_knots;
+  if (r.layout != "farthest" && r.layout != "lattice")
+    throw InvalidInput("expected --primary-knots-layout farthest or lattice, got '" + r.layout + "'", "--primary-knots-layout");
+  options.domain.lattice = r.layout == "lattice";
   if (r.primary_knots < 0) throw InvalidInput("expected a positive number of primary knots, got " + std::to_string(r.primary_knots), "--primary-knots");
   if (!(r.error >= 0)) throw InvalidInput("expected an error bound >= 0, got " + format_double(r.error), "--error");
   if (r.max_tetrahedra < 0) throw InvalidInput("expected a tetrahedron budget >= 0, got " + std::to_string(r.max_tetrahedra), "--max-tetrahedra");
@@ -183,6 +229,8 @@ void fit_file(const FitRequest& r) {
   options.knots.enabled = r.knots == "optimise";
   if (!(r.fairing >= 0) || !std::isfinite(r.fairing)) throw InvalidInput("expected a fairing weight >= 0, got " + format_double(r.fairing), "--fairing");
   options.fit.fairing = r.fairing;
+  if (!(r.jump >= 0) || !std::isfinite(r.jump)) throw InvalidInput("expected a jump >= 0, got " + format_double(r.jump), "--jump");
+  options.jump = r.jump;
   options.refinement.error = r.error;
   options.refinement.max_tetrahedra = static_cast<std::size_t>(r.max_tetrahedra);
   options.refinement.seconds = r.seconds;
@@ -194,6 +242,7 @@ void fit_file(const FitRequest& r) {
       });
     } catch (const InvalidInput& e) {
       if (e.where() == "degree") throw InvalidInput(e.message(), "--degree");
+      if (e.where() == "jump") throw InvalidInput(e.message(), "--jump");
       throw InvalidInput(e.message(), r.data + (e.where().empty() ? "" : ": " + e.where()));
     }
   }();
@@ -233,6 +282,12 @@ void fit_file(const FitRequest& r) {
     std::cout << "  " << f.name << " (data " << format_double(f.data_min) << " .. " << format_double(f.data_max) << "): mean square error "
               << format_double(f.mean_square) << " (normalised " << format_double(f.normalised_mean_square) << "), max "
               << format_double(f.max_abs) << " (normalised " << format_double(f.normalised_max_abs) << ")\n";
+  if (statistics.sharp_features.enabled) {
+    const SharpFeatureReport& sh = statistics.sharp_features;
+    std::cout << "  sharp features: regions of " << sh.region_points[0] << " and " << sh.region_points[1] << " points, "
+              << sh.interface_samples << " interface samples, " << sh.cut_tetrahedra << " tetrahedra cut, " << sh.snapped_points
+              << " points moved onto the interface, " << sh.points_across << " data points across it (not fitted)\n";
+  }
   if (r.knots == "optimise") {
     const KnotOptimisationReport& k = statistics.knot_optimisation;
     std::cout << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved in " << k.sweeps
@@ -270,12 +325,15 @@ void add_fit_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("fit", "Fit scattered volume data (points with attributes) with a trivariate simplex spline "
                                         "(Hua-He-Qin 5: domain from the data, least squares, adaptive refinement)");
   cmd->add_option("DATA", r->data,
-                  "volume data: .csv (header x,y,z,...), .ply, .vtu, .vti, .vtk, .inr, .nii, or marschner-lobb:N / two-material:N")
+                  "volume data: .csv (header x,y,z,...), .ply, .vtu, .vti, .vtk, .inr, .nii, or marschner-lobb:N / two-material:N[:TILT]")
       ->required();
   cmd->add_option("-o,--output", r->out, "output model file (.json)")->required();
   cmd->add_option("--degree", r->degree, "the degree n, 1 to 5 (default 2)");
   cmd->add_option("--attributes", r->attributes, "the attributes to fit, comma-separated (default: all)");
   cmd->add_option("--primary-knots", r->primary_knots, "the number of primary knots (domain vertices; default: points / (2 (n+1)(n+2)), points / 24 for degree 2)");
+  cmd->add_option("--primary-knots-layout", r->layout,
+                  "farthest (default: data points by farthest-point sampling) or lattice (a body-centred cubic lattice over "
+                  "the bounding box: congruent tetrahedra, better on grid-like smooth data; docs/fitting.md)");
   cmd->add_option("--error", r->error,
                   "adaptive refinement (Hua-He-Qin 5.4): split every tetrahedron whose RMS normalised field error is above E (default 0: none)");
   cmd->add_option("--max-tetrahedra", r->max_tetrahedra, "the refinement's tetrahedron budget (default: 8 times the initial domain)");
@@ -287,6 +345,10 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--fairing", r->fairing,
                   "weight of the fairing term (finite differences of order n+1, zero on polynomials of degree <= n) against "
                   "the data term (default 0: none; 0.1 damps ringing next to the boundary, docs/fitting.md)");
+  cmd->add_option("--jump", r->jump,
+                  "sharp features (Hua-He-Qin 4.2): neighbouring points whose normalised values differ by more than J are on two "
+                  "sides of a jump; the surface between them becomes a domain interface with knots on it and no control vector "
+                  "shared across it (default 0: off; docs/fitting.md)");
   cmd->add_flag("--baselines", r->baselines,
                 "also fit what a user would pick instead and compare: a tensor-product B-spline least-squares fit with as many "
                 "coefficients, and trilinear and nearest interpolation for grid data; errors at the data points and, for "

@@ -217,11 +217,34 @@ PointCloudDomain point_cloud_domain(std::span<const Eigen::Vector3d> points, con
                        "points");
   const int wanted = options.primary_knots > 0 ? options.primary_knots : std::max(4, static_cast<int>(points.size() / 24));
   const int count = std::min<int>(wanted, static_cast<int>(points.size()));
-  std::vector<int> seeds = convex_hull_vertices(points);
-  if (static_cast<int>(seeds.size()) > count / 2) seeds.clear();
-  const std::vector<int> chosen = farthest_point_subsample(points, count, seeds);
+  std::vector<int> chosen;
   std::vector<Eigen::Vector3d> knots;
-  for (int i : chosen) knots.push_back(points[static_cast<std::size_t>(i)]);
+  if (options.lattice) {
+    // Body-centred cubic: (m_x + 1)(m_y + 1)(m_z + 1) corners and m_x m_y m_z centres, cells of
+    // equal sides as near as the box allows, about `count` in all.
+    Eigen::AlignedBox3d box;
+    for (const auto& p : points) box.extend(p);
+    const Eigen::Vector3d size = box.sizes();
+    const double cell = std::cbrt(2 * size.prod() / std::max(count, 2));
+    Eigen::Vector3i m;
+    for (int a = 0; a < 3; ++a) m[a] = std::max(1, static_cast<int>(std::lround(size[a] / cell)));
+    const Eigen::Vector3d step = size.cwiseQuotient(m.cast<double>());
+    for (int k = 0; k <= m.z(); ++k)
+      for (int j = 0; j <= m.y(); ++j)
+        for (int i = 0; i <= m.x(); ++i) {
+          knots.push_back(box.min() + Eigen::Vector3d(i, j, k).cwiseProduct(step));
+          chosen.push_back(-1);
+          if (i < m.x() && j < m.y() && k < m.z()) {
+            knots.push_back(box.min() + (Eigen::Vector3d(i, j, k) + Eigen::Vector3d::Constant(0.5)).cwiseProduct(step));
+            chosen.push_back(-1);
+          }
+        }
+  } else {
+    std::vector<int> seeds = convex_hull_vertices(points);
+    if (static_cast<int>(seeds.size()) > count / 2) seeds.clear();
+    chosen = farthest_point_subsample(points, count, seeds);
+    for (int i : chosen) knots.push_back(points[static_cast<std::size_t>(i)]);
+  }
   TetrahedralMesh delaunay;
   try {
     delaunay = delaunay_tetrahedralization(knots);

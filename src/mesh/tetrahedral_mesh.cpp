@@ -182,4 +182,31 @@ double tetrahedral_mesh_volume(const TetrahedralMesh& mesh) {
   return volume / 6;
 }
 
+std::vector<int> tetrahedron_parts(const TetrahedralMesh& mesh) {
+  // Union-find over the points; a tetrahedron joins its four corners.
+  std::vector<int> parent(mesh.points.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  const auto root = [&](int v) {
+    while (parent[static_cast<std::size_t>(v)] != v) {
+      parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+      v = parent[static_cast<std::size_t>(v)];
+    }
+    return v;
+  };
+  for (const std::array<int, 4>& t : mesh.tetrahedra)
+    for (int c = 1; c < 4; ++c) {
+      const int a = root(t[0]), b = root(t[static_cast<std::size_t>(c)]);
+      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+  std::vector<int> part_of_root(mesh.points.size(), -1);
+  std::vector<int> parts(mesh.tetrahedra.size());
+  int next = 0;
+  for (std::size_t t = 0; t < mesh.tetrahedra.size(); ++t) {
+    int& p = part_of_root[static_cast<std::size_t>(root(mesh.tetrahedra[t][0]))];
+    if (p < 0) p = next++;
+    parts[t] = p;
+  }
+  return parts;
+}
+
 }  // namespace volspline

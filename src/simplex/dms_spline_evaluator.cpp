@@ -90,6 +90,15 @@ struct DmsSplineEvaluator::Index {
   };
   std::vector<ReachPlanes> reach;
   BoxGrid reach_grid;
+  // The part of every tetrahedron (tetrahedron_parts): parts that touch without sharing points
+  // are separate splines, so a point takes only the basis functions of the part that holds it.
+  std::vector<int> parts;
+  bool several_parts = false;
+  // Keeps the tetrahedra of `part` (order kept).
+  void keep_part(std::vector<int>& tetrahedra, int part) const {
+    if (!several_parts) return;
+    std::erase_if(tetrahedra, [&](int t) { return parts[static_cast<std::size_t>(t)] != part; });
+  }
 };
 
 struct DmsSplineEvaluator::Scratch {
@@ -204,6 +213,8 @@ DmsSplineEvaluator::DmsSplineEvaluator(const DmsSplineVolume& volume)
     tetrahedron_boxes.emplace_back(tet_box.min() - margin, tet_box.max() + margin);
   }
   if (!index->lower_degree_step) index->full_plans(volume);
+  index->parts = tetrahedron_parts(domain);
+  index->several_parts = std::any_of(index->parts.begin(), index->parts.end(), [](int p) { return p != 0; });
   index->reach_grid = BoxGrid(reach_boxes);
   index->supports = BoxGrid(support_boxes);
   index->tetrahedra = BoxGrid(tetrahedron_boxes);
@@ -286,6 +297,7 @@ void DmsSplineEvaluator::for_each_basis_function(const Eigen::Vector3d& x, const
   }
   const std::vector<DmsTetrahedronPlan>& full_plans = index_->full_plans(v);
   support_candidates(x, scratch_->candidates);
+  index_->keep_part(scratch_->candidates, index_->parts[static_cast<std::size_t>(located)]);
   for (const int t : scratch_->candidates) {
     scratch_->basis.evaluate(x, full_plans[static_cast<std::size_t>(t)], 0, scratch_->values);
     for (int b = 0; b < v.basis_per_tetrahedron(); ++b) f(v.control_row(t, b), scratch_->values.values[static_cast<std::size_t>(b)]);
@@ -297,6 +309,7 @@ int DmsSplineEvaluator::degree_zero_tetrahedron(const Eigen::Vector3d& x, int lo
   // keeps the closed tetrahedron that holds it.
   const TetrahedralMesh& domain = volume_->domain();
   for (const int t : index_->tetrahedra.query(x)) {
+    if (index_->parts[static_cast<std::size_t>(t)] != index_->parts[static_cast<std::size_t>(located)]) continue;
     const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
     if (in_half_open_tetrahedron(x, domain.points[static_cast<std::size_t>(tet[0])], domain.points[static_cast<std::size_t>(tet[1])],
                                  domain.points[static_cast<std::size_t>(tet[2])], domain.points[static_cast<std::size_t>(tet[3])])) {
@@ -313,7 +326,9 @@ bool DmsSplineEvaluator::leaves_domain(const Eigen::Vector3d& x, int located) co
   };
   if (in_half_open_tetrahedron(x, corner(located, 0), corner(located, 1), corner(located, 2), corner(located, 3))) return false;
   for (const int t : index_->tetrahedra.query(x))
-    if (in_half_open_tetrahedron(x, corner(t, 0), corner(t, 1), corner(t, 2), corner(t, 3))) return false;
+    if (index_->parts[static_cast<std::size_t>(t)] == index_->parts[static_cast<std::size_t>(located)] &&
+        in_half_open_tetrahedron(x, corner(t, 0), corner(t, 1), corner(t, 2), corner(t, 3)))
+      return false;
   return true;
 }
 
@@ -329,6 +344,8 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
   out.tetrahedron = locate_among(x, scratch_->candidates, &clearly_inside);
   out.inside = out.tetrahedron >= 0;
   if (!out.inside) return;
+  const int part = index_->parts[static_cast<std::size_t>(out.tetrahedron)];
+  index_->keep_part(scratch_->candidates, part);
   const Eigen::MatrixXd& control = v.control_vectors();
   if (v.degree() == 0) {
     for_each_basis_function(x, [&](int row, double value) { out.value += value * control.row(row).transpose(); });
@@ -350,7 +367,10 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
   for (int pass = 0; pass < (derivative_point == x ? 1 : 2); ++pass) {
     const Eigen::Vector3d& at = pass == 0 ? x : derivative_point;
     const int pass_order = derivative_point == x ? order : (pass == 0 ? 0 : 1);
-    if (pass == 1) reaching_tetrahedra(at, scratch_->candidates);
+    if (pass == 1) {
+      reaching_tetrahedra(at, scratch_->candidates);
+      index_->keep_part(scratch_->candidates, part);
+    }
     if (index_->lower_degree_step && v.degree() == 1) {
       add_linear_step(at, out.tetrahedron, pass_order, pass == 0, out);
       continue;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -297,11 +298,55 @@ std::vector<BoundaryVertex> boundary_vertex_faces(const TetrahedralMesh& domain,
   return result;
 }
 
-// The first sub-knot l >= 1 of `vertex` that lies in Ω (closed), and the tetrahedron holding it.
-std::optional<std::pair<int, int>> sub_knot_inside(const TetrahedronLocator& locator, const KnotClouds& clouds,
+// Point location in the part of Ω (tetrahedron_parts) that holds each vertex: a domain of parts
+// that touch along an interface without sharing points is one spline per part, so a boundary
+// vertex's sub-knots must lie outside its own part (§3.2 per part) and may lie in another.
+class KnotPartLocators {
+ public:
+  explicit KnotPartLocators(const TetrahedralMesh& domain) {
+    const std::vector<int> parts = tetrahedron_parts(domain);
+    const int count = parts.empty() ? 0 : *std::max_element(parts.begin(), parts.end()) + 1;
+    part_of_point_.assign(domain.points.size(), 0);
+    meshes_.resize(static_cast<std::size_t>(count));
+    tetrahedra_.resize(static_cast<std::size_t>(count));
+    std::vector<int> local(domain.points.size(), -1);  // a point's index in its part's mesh
+    for (std::size_t t = 0; t < parts.size(); ++t) {
+      const auto p = static_cast<std::size_t>(parts[t]);
+      std::array<int, 4> tet{};
+      for (int c = 0; c < 4; ++c) {
+        const auto v = static_cast<std::size_t>(domain.tetrahedra[t][static_cast<std::size_t>(c)]);
+        if (local[v] < 0) {
+          local[v] = static_cast<int>(meshes_[p].points.size());
+          meshes_[p].points.push_back(domain.points[v]);
+        }
+        tet[static_cast<std::size_t>(c)] = local[v];
+        part_of_point_[v] = parts[t];
+      }
+      meshes_[p].tetrahedra.push_back(tet);
+      tetrahedra_[p].push_back(static_cast<int>(t));
+    }
+    for (const TetrahedralMesh& m : meshes_) locators_.emplace_back(m);
+  }
+  // The tetrahedron (of the whole domain) of `vertex`'s part whose closed region holds x, or -1.
+  int locate(int vertex, const Eigen::Vector3d& x) const {
+    const auto p = static_cast<std::size_t>(part_of_point_[static_cast<std::size_t>(vertex)]);
+    const int t = locators_[p].locate(x);
+    return t < 0 ? -1 : tetrahedra_[p][static_cast<std::size_t>(t)];
+  }
+
+ private:
+  std::vector<int> part_of_point_;
+  std::vector<TetrahedralMesh> meshes_;  // each part's tetrahedra and points
+  std::vector<std::vector<int>> tetrahedra_;
+  std::deque<TetrahedronLocator> locators_;  // they point into meshes_, which no longer grows
+};
+
+// The first sub-knot l >= 1 of `vertex` that lies in its part of Ω (closed), and the tetrahedron
+// holding it.
+std::optional<std::pair<int, int>> sub_knot_inside(const KnotPartLocators& locator, const KnotClouds& clouds,
                                                    int vertex) {
   for (int l = 1; l <= clouds.degree; ++l) {
-    const int t = locator.locate(clouds.cloud(vertex)[l]);
+    const int t = locator.locate(vertex, clouds.cloud(vertex)[l]);
     if (t >= 0) return std::pair{l, t};
   }
   return std::nullopt;
@@ -369,6 +414,7 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
   if (!(options.spread > 0 && options.spread < 0.5)) {
     throw InvalidInput("spread " + format_double(options.spread) + " is outside (0, 0.5)", "spread");
   }
+  if (!(options.lean >= 0 && options.lean <= 1)) throw InvalidInput("lean " + format_double(options.lean) + " is outside [0, 1]", "lean");
   validate_tetrahedral_mesh(domain);
   const int n = degree;
   const std::size_t num_points = domain.points.size();
@@ -401,7 +447,7 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
   std::vector<int> halvings(num_points, 0);
   // Sub-knot l at distance spread * e * (n + l) / (2n): distinct distances, so no two sub-knots
   // of a cloud are images of each other under the cloud's symmetry. A boundary vertex's
-  // sub-knots lean from the outward pseudo-normal N by tan(angle) = 0.5 / 2^halvings
+  // sub-knots lean from the outward pseudo-normal N by tan(angle) = options.lean / 2^halvings
   // around it, so they stay in the exterior cone of edges and corners of up to about 53°
   // between N and the faces, and leave N as the cone narrows with each halving.
   const auto place = [&](int v) {
@@ -419,7 +465,7 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
       normal = p - centre / (4.0 * incident[v].size());
     }
     normal.normalize();
-    const double lean = std::ldexp(0.5, -halvings[v]);
+    const double lean = std::ldexp(options.lean, -halvings[v]);
     for (int l = 1; l <= n; ++l) {
       const double distance = scale * (n + l) / (2.0 * n);
       Eigen::Vector3d d;
@@ -436,7 +482,7 @@ KnotClouds generate_knot_clouds(const TetrahedralMesh& domain, int degree, const
   };
   for (std::size_t v = 0; v < num_points; ++v) place(static_cast<int>(v));
 
-  const TetrahedronLocator locator(domain);
+  const KnotPartLocators locator(domain);
   const auto subs = knot_tetrahedron_indices(n);
   const auto spaces = half_spaces(n);
   std::vector<int> dirty_tetrahedra(domain.tetrahedra.size());
@@ -520,7 +566,7 @@ void validate_knot_clouds(const TetrahedralMesh& domain, const KnotClouds& cloud
     if (check.violation != Violation::kNone) throw tetrahedron_error(clouds, domain, t, check);
   }
   if (n == 0) return;
-  const TetrahedronLocator locator(domain);
+  const KnotPartLocators locator(domain);
   for (const BoundaryVertex& b : boundary_vertex_faces(domain, boundary_faces(domain))) {
     if (const auto inside = sub_knot_inside(locator, clouds, b.vertex)) {
       throw outside_error(clouds, b, inside->first, inside->second);

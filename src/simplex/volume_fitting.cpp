@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
+
+#include <Eigen/QR>
 
 #include "volume_fitting_assembly.h"
 #include "volume_fitting_solver.h"
@@ -12,6 +15,9 @@
 #include "volspline/simplex/dms_spline_evaluator.h"
 #include "volspline/simplex/knot_clouds.h"
 #include "volspline/simplex/knot_optimisation.h"
+#include "volspline/mesh/interface_split.h"
+#include "volspline/mesh/material_interface.h"
+#include "volspline/mesh/tetrahedron_locator.h"
 
 namespace volspline {
 namespace {
@@ -56,6 +62,9 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> fairing_rows(const DmsSplineVolume&
   const TetrahedralMesh& domain = volume.domain();
   const int order = volume.degree() + 1;
   const DmsSplineEvaluator locator(volume);
+  // A stencil stays in its tetrahedron's part: across an interface (sharp features) the spline
+  // jumps, and the difference would pull the two sides together.
+  const std::vector<int> parts = tetrahedron_parts(domain);
   std::vector<Eigen::Vector3d> points;
   std::vector<double> weights;
   for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t) {
@@ -72,7 +81,10 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> fairing_rows(const DmsSplineVolume&
     for (const double sign : {1.0, -1.0}) {
       const Eigen::Vector3d step = sign * h * Eigen::Vector3d::Unit(static_cast<Eigen::Index>(t % 3));
       bool fits = true;
-      for (int k = 1; k <= order && fits; ++k) fits = locator.locate(g + k * step) >= 0;
+      for (int k = 1; k <= order && fits; ++k) {
+        const int holder = locator.locate(g + k * step);
+        fits = holder >= 0 && parts[static_cast<std::size_t>(holder)] == parts[t];
+      }
       if (!fits) continue;
       for (int k = 0; k <= order; ++k) {
         points.push_back(g + k * step);
@@ -100,6 +112,67 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> fairing_rows(const DmsSplineVolume&
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows(stencils, values.cols());
   rows.setFromTriplets(entries.begin(), entries.end());
   return rows;
+}
+
+// The prior of the attribute columns (decision, docs/fitting.md "The least-squares fit"): per
+// part of Ω (tetrahedron_parts; one part unless the domain is split at a jump), the blossom of
+// the least-squares linear function of the part's data — its value at the control point of the
+// identity geometry, which is the mean of the blossom arguments — or of their mean where the
+// part has too few points for a plane. A coefficient that no data point sees keeps it, so a
+// part's linear trend (and a constant on each side of a jump) continues where the data are thin.
+Eigen::MatrixXd linear_prior(const DmsSplineVolume& volume, const Collocation& c, const VolumeData& data) {
+  const std::vector<int> parts = tetrahedron_parts(volume.domain());
+  const int part_count = parts.empty() ? 1 : *std::max_element(parts.begin(), parts.end()) + 1;
+  std::vector<int> row_part(static_cast<std::size_t>(volume.control_vector_count()), 0);
+  for (int r = 0; r < volume.control_vector_count(); ++r)
+    row_part[static_cast<std::size_t>(r)] = parts[static_cast<std::size_t>(volume.control_row_uses()[static_cast<std::size_t>(r)].front()[0])];
+  const Eigen::Index k = data.attributes.cols();
+  // Normal equations of [1 x y z] per part, centred on the part's mean point for conditioning.
+  std::vector<Eigen::Vector3d> centre(static_cast<std::size_t>(part_count), Eigen::Vector3d::Zero());
+  std::vector<std::vector<Eigen::Index>> members(static_cast<std::size_t>(part_count));
+  for (Eigen::Index i = 0; i < c.a.rows(); ++i) {
+    if (!c.inside[static_cast<std::size_t>(i)]) continue;
+    Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(c.a, i);
+    if (!it) continue;
+    const auto p = static_cast<std::size_t>(row_part[static_cast<std::size_t>(it.col())]);
+    members[p].push_back(i);
+    centre[p] += data.points[static_cast<std::size_t>(i)];
+  }
+  Eigen::RowVectorXd overall = Eigen::RowVectorXd::Zero(k);
+  std::size_t inside = 0;
+  for (const auto& list : members)
+    for (Eigen::Index i : list) overall += data.attributes.row(i), ++inside;
+  if (inside > 0) overall /= static_cast<double>(inside);
+  std::vector<Eigen::MatrixXd> coefficients(static_cast<std::size_t>(part_count));  // 4 x k: value at centre, gradient
+  for (std::size_t p = 0; p < members.size(); ++p) {
+    Eigen::MatrixXd& f = coefficients[p];
+    f = Eigen::MatrixXd::Zero(4, k);
+    if (members[p].empty()) {
+      f.row(0) = overall;
+      continue;
+    }
+    centre[p] /= static_cast<double>(members[p].size());
+    Eigen::MatrixXd design(static_cast<Eigen::Index>(members[p].size()), 4), targets(static_cast<Eigen::Index>(members[p].size()), k);
+    for (std::size_t j = 0; j < members[p].size(); ++j) {
+      const auto row = static_cast<Eigen::Index>(j);
+      design(row, 0) = 1;
+      design.block<1, 3>(row, 1) = (data.points[static_cast<std::size_t>(members[p][j])] - centre[p]).transpose();
+      targets.row(row) = data.attributes.row(members[p][j]);
+    }
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(design);
+    if (qr.rank() == 4) {
+      f = qr.solve(targets);
+    } else {
+      f.row(0) = targets.colwise().mean();
+    }
+  }
+  Eigen::MatrixXd prior(volume.control_vector_count(), k);
+  for (int r = 0; r < volume.control_vector_count(); ++r) {
+    const auto p = static_cast<std::size_t>(row_part[static_cast<std::size_t>(r)]);
+    const Eigen::Vector3d x = volume.control_vectors().row(r).head<3>().transpose() - centre[p];
+    prior.row(r) = coefficients[p].row(0) + x.transpose() * coefficients[p].bottomRows<3>();
+  }
+  return prior;
 }
 
 std::vector<int> attribute_columns(DmsSplineVolume& volume, const VolumeData& data) {
@@ -161,6 +234,62 @@ VolumeFitErrors errors_at(const Eigen::MatrixXd& values, const VolumeData& data,
 }
 
 
+// Sharp features (§4.2): the regions of a jump in the data, the interface between them as a cut
+// through the domain (points on it once per side), and the data points on their own side.
+// Returns the data to fit: those not across the estimated interface from their region.
+VolumeData split_domain_at_jump(PointCloudDomain& domain, const VolumeData& data, double jump, SharpFeatureReport& report) {
+  Eigen::MatrixXd normalised = data.attributes;
+  for (Eigen::Index c = 0; c < normalised.cols(); ++c) {
+    const double lo = normalised.col(c).minCoeff(), range = normalised.col(c).maxCoeff() - lo;
+    normalised.col(c) = (normalised.col(c).array() - lo) / (range > 0 ? range : 1.0);
+  }
+  const JumpRegions regions = jump_regions(data.points, normalised, jump);
+  report.enabled = true;
+  report.region_points = regions.sizes;
+  report.jump_edges = regions.jump_edges;
+  if (regions.sizes.size() != 2) {
+    std::string sizes;
+    for (std::size_t r = 0; r < regions.sizes.size() && r < 8; ++r) sizes += (r ? ", " : "") + std::to_string(regions.sizes[r]);
+    throw InvalidInput("the jump " + std::to_string(jump) + " splits the data into " + std::to_string(regions.sizes.size()) +
+                           " regions (points: " + sizes + (regions.sizes.size() > 8 ? ", ..." : "") +
+                           "); sharp features are fitted between two regions", "jump");
+  }
+  const MaterialInterface interface(data.points, regions.label);
+  report.interface_samples = interface.sample_count();
+  std::vector<double> level(domain.mesh.points.size());
+  std::vector<Eigen::Vector3d> normal(domain.mesh.points.size());
+  for (std::size_t v = 0; v < level.size(); ++v) level[v] = interface.level(domain.mesh.points[v], &normal[v]);
+  InterfaceSplit split = split_at_interface(domain.mesh, level, normal);
+  report.cut_tetrahedra = split.cut_tetrahedra;
+  report.snapped_points = split.snapped_points;
+  report.interface_points = split.interface_points;
+  // A data point is fitted by the side whose closed tetrahedra hold it.
+  std::array<TetrahedralMesh, 2> sides;
+  for (std::size_t t = 0; t < split.side.size(); ++t) sides[static_cast<std::size_t>(split.side[t])].tetrahedra.push_back(split.mesh.tetrahedra[t]);
+  for (TetrahedralMesh& m : sides) m.points = split.mesh.points;
+  const TetrahedronLocator locate_0(sides[0]), locate_1(sides[1]);
+  std::vector<Eigen::Index> kept;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const bool own = (regions.label[i] == 0 ? locate_0 : locate_1).locate(data.points[i]) >= 0;
+    const bool other = !own && (regions.label[i] == 0 ? locate_1 : locate_0).locate(data.points[i]) >= 0;
+    if (other)
+      ++report.points_across;
+    else
+      kept.push_back(static_cast<Eigen::Index>(i));
+  }
+  domain.mesh = std::move(split.mesh);
+  domain.kinds = classify_vertices(domain.mesh);
+  domain.data_index.assign(domain.mesh.points.size(), -1);  // interface points are no data points
+  VolumeData fitted;
+  fitted.attribute_names = data.attribute_names;
+  fitted.attributes.resize(static_cast<Eigen::Index>(kept.size()), data.attributes.cols());
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    fitted.points.push_back(data.points[static_cast<std::size_t>(kept[k])]);
+    fitted.attributes.row(static_cast<Eigen::Index>(k)) = data.attributes.row(kept[k]);
+  }
+  return fitted;
+}
+
 }  // namespace
 
 VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& data, const ControlVectorFitOptions& options,
@@ -186,14 +315,10 @@ VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& d
   }
   Eigen::MatrixXd& control = volume.control_vectors();
   prior.leftCols<3>() = control.leftCols<3>();  // the identity geometry (blossom of x)
-  for (std::size_t a = 0; a < columns.size(); ++a) {
-    double sum = 0;
-    for (Eigen::Index i = 0; i < m; ++i)
-      if (c.inside[static_cast<std::size_t>(i)]) sum += data.attributes(i, static_cast<Eigen::Index>(a));
-    if (options.prior_from_volume)
-      prior.col(3 + static_cast<Eigen::Index>(a)) = control.col(columns[a]);
-    else
-      prior.col(3 + static_cast<Eigen::Index>(a)).setConstant(sum / static_cast<double>(fitted));
+  if (options.prior_from_volume) {
+    for (std::size_t a = 0; a < columns.size(); ++a) prior.col(3 + static_cast<Eigen::Index>(a)) = control.col(columns[a]);
+  } else {
+    prior.rightCols(width - 3) = linear_prior(volume, c, data);
   }
   FittingSolverOptions solver;
   solver.regularisation = options.regularisation;
@@ -275,8 +400,17 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
   announce("domain");
   PointCloudDomain domain = point_cloud_domain(data.points, domain_options);
   clock.done("domain");
+  std::optional<VolumeData> own_side;  // the data fitted when the domain is split at a jump
+  if (options.jump > 0) {
+    announce("sharp features");
+    own_side = split_domain_at_jump(domain, data, options.jump, statistics.sharp_features);
+    clock.done("sharp features");
+  }
+  const VolumeData& fitted = own_side ? *own_side : data;
   KnotCloudOptions cloud_options;
   cloud_options.spread = options.spread;
+  // An interface meets ∂Ω in wedges as sharp as its angle with the boundary: sub-knots on the ray.
+  if (own_side) cloud_options.lean = 0;
   KnotClouds clouds = generate_knot_clouds(domain.mesh, options.degree, cloud_options);
   clock.done("knot clouds");
   statistics.data_points = data.size();
@@ -292,13 +426,13 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
   DmsSplineVolume volume(std::move(domain.mesh), std::move(clouds), DmsControlSharing::Shared);
   statistics.control_points = static_cast<std::size_t>(volume.control_vector_count());
   announce("least squares");
-  statistics.errors = fit_control_vectors(volume, data, options.fit, &statistics.phases);
+  statistics.errors = fit_control_vectors(volume, fitted, options.fit, &statistics.phases);
   if (options.knots.enabled) {
     announce("knot optimisation");
     const auto start = std::chrono::steady_clock::now();
     KnotOptimisationOptions knots = options.knots;
     if (!(knots.threshold > 0) && options.refinement.error > 0) knots.threshold = options.refinement.error;
-    statistics.knot_optimisation = optimise_knots(volume, statistics.errors, data, knots, options.fit);
+    statistics.knot_optimisation = optimise_knots(volume, statistics.errors, fitted, knots, options.fit);
     statistics.phases.push_back({"knot optimisation", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
   }
   if (options.refinement.error > 0) {
@@ -306,7 +440,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     const auto start = std::chrono::steady_clock::now();
     AdaptiveRefinementOptions refinement = options.refinement;
     refinement.spread = options.spread;
-    statistics.refinement = refine_volume_fit(volume, statistics.errors, data, refinement, options.fit, [&](const RefinementRound& round) {
+    statistics.refinement = refine_volume_fit(volume, statistics.errors, fitted, refinement, options.fit, [&](const RefinementRound& round) {
       announce("adaptive refinement: " + std::to_string(round.tetrahedra) + " tetrahedra");
     });
     statistics.phases.push_back({"adaptive refinement", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
@@ -320,6 +454,12 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     unrefined.control_points = statistics.control_points;
     unrefined.field_mean_square = mean_normalised_field_error(statistics.errors);
     statistics.refinement.rounds = {unrefined};
+  }
+  if (own_side) {
+    // The errors at all the data, those across the interface included.
+    const LeastSquaresSolve solver = statistics.errors.solver;
+    statistics.errors = volume_fit_errors(volume, data);
+    statistics.errors.solver = solver;
   }
   return {std::move(volume), std::move(statistics)};
 }

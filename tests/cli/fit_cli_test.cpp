@@ -94,6 +94,27 @@ TEST_F(FitCli, BadInputExitsWithTwoNamingTheProblem) {
   expect_bad("fit " + path("data.csv") + " --max-tetrahedra -5", "--max-tetrahedra");
   expect_bad("fit " + path("data.csv") + " --fairing -0.1", "--fairing");
   expect_bad("fit " + path("data.csv") + " --fairing inf", "--fairing");
+  expect_bad("fit " + path("data.csv") + " --jump -1", "--jump");
+  expect_bad("fit " + path("data.csv") + " --primary-knots-layout grid", "--primary-knots-layout");
+  expect_bad("fit two-material:9:0.37 --jump 2", "--jump: the jump 2.000000 splits the data into 1 regions");
+  expect_bad("fit two-material:9:x", "two-material:N:TILT");
+}
+
+TEST_F(FitCli, AJumpFittedWithAlignedKnotsBeatsTheTensorProductSideBySide) {
+  // docs/fitting.md, "Sharp features": the two-material field on a tilted plane, fitted with
+  // --jump and, in the same run, by the tensor product with no more coefficients. At the data the
+  // piecewise linear field is reproduced; against the true field what is left is the interface's
+  // position between the samples.
+  const auto r = run("fit two-material:13:0.37 --jump 0.3 --baselines --stats " + path("s.json") + " -o " + path("m.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json s = nlohmann::json::parse(std::ifstream(path("s.json")));
+  ASSERT_TRUE(s.contains("sharp_features"));
+  EXPECT_EQ(s["sharp_features"]["region_points"].size(), 2u);
+  const auto& rows = s["baselines"];
+  ASSERT_EQ(rows[1]["method"], "tensor-product least squares (degree 2)");
+  EXPECT_LE(rows[1]["coefficients"].get<int>(), rows[0]["coefficients"].get<int>());
+  EXPECT_LT(rows[0]["data_mean_square"].get<double>(), 1e-6 * rows[1]["data_mean_square"].get<double>());
+  EXPECT_LT(rows[0]["truth_mean_square"].get<double>(), 0.2 * rows[1]["truth_mean_square"].get<double>());
 }
 
 TEST_F(FitCli, RefinementAndKnotOptimisationAreReportedInTheStatistics) {

@@ -141,5 +141,21 @@ TEST(PointCloudDomain, CoplanarOrTooFewPointsAreRefused) {
   }
 }
 
+TEST(PointCloudDomain, ALatticeLayoutCoversTheBoxWithAboutTheAskedNumberOfKnots) {
+  std::vector<Eigen::Vector3d> points;
+  for (int k = 0; k < 12; ++k)
+    for (int j = 0; j < 12; ++j)
+      for (int i = 0; i < 12; ++i) points.emplace_back(2.0 * i / 11, 1.0 * j / 11, 1.0 * k / 11);
+  PointCloudDomainOptions options;
+  options.primary_knots = 60;
+  options.lattice = true;
+  const PointCloudDomain domain = point_cloud_domain(points, options);
+  ASSERT_NO_THROW(validate_tetrahedral_mesh(domain.mesh));
+  EXPECT_NEAR(tetrahedral_mesh_volume(domain.mesh), 2.0, 1e-12);  // the box, corners kept
+  // cbrt(2 · 2 / 60) = 0.405: cells 0.4 x 0.5 x 0.5, 6 x 3 x 3 corners and 5 x 2 x 2 centres.
+  EXPECT_EQ(domain.mesh.points.size(), 54u + 20u);
+  for (int v : domain.data_index) EXPECT_EQ(v, -1);
+}
+
 }  // namespace
 }  // namespace volspline

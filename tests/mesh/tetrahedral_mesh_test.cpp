@@ -142,5 +142,19 @@ TEST(TetrahedralMesh, ValidationNamesWhatIsWrong) {
   expect_invalid([] { validate_tetrahedral_mesh({}); }, "tetrahedra", "at least one");
 }
 
+TEST(TetrahedralMesh, PartsAreTheTetrahedraConnectedThroughSharedPoints) {
+  TetrahedralMesh two = test_support::kuhn_cube();
+  const std::size_t n = two.points.size();
+  for (std::size_t i = 0; i < n; ++i) two.points.push_back(two.points[i] + Eigen::Vector3d(1, 0, 0));  // a touching copy
+  const std::size_t tets = two.tetrahedra.size();
+  for (std::size_t t = 0; t < tets; ++t) {
+    std::array<int, 4> copy = two.tetrahedra[t];
+    for (int& v : copy) v += static_cast<int>(n);
+    two.tetrahedra.push_back(copy);
+  }
+  const std::vector<int> parts = tetrahedron_parts(two);
+  for (std::size_t t = 0; t < parts.size(); ++t) EXPECT_EQ(parts[t], t < tets ? 0 : 1);
+}
+
 }  // namespace
 }  // namespace volspline

@@ -285,5 +285,51 @@ TEST(DmsSplineVolume, RefusesWhatItCannotRepresent) {
   EXPECT_THROW(DmsSplineEvaluator(v).evaluate(Eigen::Vector3d(0.5, 0.5, 0.5), 2), InvalidInput);
 }
 
+// A domain of two parts that touch along the plane x = 0.5 without sharing points (its points
+// there duplicated, as interface_split makes them): each part is its own spline, so a volume
+// with the blossoms of two different linear functions on the two parts takes each exactly on its
+// side, right up to the plane (§4.2: the jump is kept).
+TEST(DmsSplineVolume, PartsTouchingWithoutSharedPointsAreSeparateSplinesThatJumpAtTheirInterface) {
+  TetrahedralMesh domain;
+  const TetrahedralMesh half = test_support::jittered_cube_domain(3);
+  for (int side = 0; side < 2; ++side) {
+    const int offset = static_cast<int>(domain.points.size());
+    for (const Eigen::Vector3d& p : half.points) domain.points.emplace_back(0.5 * p.x() + 0.5 * side, p.y(), p.z());
+    for (std::array<int, 4> t : half.tetrahedra) {
+      for (int& v : t) v += offset;
+      domain.tetrahedra.push_back(t);
+    }
+  }
+  for (int degree = 1; degree <= 3; ++degree) {
+    KnotClouds clouds = generate_knot_clouds(domain, degree);  // boundary sub-knots outside their own part
+    ASSERT_NO_THROW(validate_knot_clouds(domain, clouds));
+    DmsSplineVolume volume(domain, clouds, DmsControlSharing::Shared, {"g"});
+    const std::vector<int> parts = tetrahedron_parts(volume.domain());
+    // g = 1 + y on the part x <= 0.5, 3 − z on the other: the blossom of a linear function is its
+    // value at the mean of the arguments.
+    for (int row = 0; row < volume.control_vector_count(); ++row) {
+      const auto [tet, beta] = volume.control_row_uses()[static_cast<std::size_t>(row)].front();
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      const std::vector<Eigen::Vector3d> arguments = dms_blossom_arguments(volume, tet, beta);
+      for (const Eigen::Vector3d& a : arguments) mean += a / static_cast<double>(arguments.size());
+      volume.control_vectors()(row, 3) = parts[static_cast<std::size_t>(tet)] == 0 ? 1 + mean.y() : 3 - mean.z();
+    }
+    DmsSplineEvaluator evaluator(volume);
+    for (double d : {0.2, 1e-3, 1e-7}) {
+      for (const Eigen::Vector3d& yz : {Eigen::Vector3d(0, 0.3, 0.6), Eigen::Vector3d(0, 0.81, 0.17)}) {
+        const DmsSplinePoint left = evaluator.evaluate(Eigen::Vector3d(0.5 - d, yz.y(), yz.z()), 1);
+        const DmsSplinePoint right = evaluator.evaluate(Eigen::Vector3d(0.5 + d, yz.y(), yz.z()), 1);
+        ASSERT_TRUE(left.inside && right.inside);
+        EXPECT_NEAR(left.value[3], 1 + yz.y(), 1e-10) << "degree " << degree << ", d " << d;
+        EXPECT_NEAR(right.value[3], 3 - yz.z(), 1e-10) << "degree " << degree << ", d " << d;
+        EXPECT_NEAR(left.gradient(3, 1), 1, 1e-8);
+        EXPECT_NEAR(right.gradient(3, 2), -1, 1e-8);
+        EXPECT_NEAR(left.value[0], 0.5 - d, 1e-12);  // the identity geometry on both parts
+        EXPECT_NEAR(right.value[0], 0.5 + d, 1e-12);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace volspline

@@ -96,13 +96,19 @@ TEST(KnotClouds, SliversShrinkTheirCloudsUntilValid) {
 
 TEST(KnotClouds, GenerationGivesUpNamingTheTetrahedronWhereNoSpreadWorks) {
   // Tetrahedron 1 touches the bottom face of tetrahedron 0 with its apex (a T-junction, which
-  // validate_tetrahedral_mesh does not look for): every sub-knot of the apex, along its outward
-  // pseudo-normal (up), lies in tetrahedron 0, however small the spread.
-  TetrahedralMesh domain{{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 1},
-                          {0.3, 0.3, 0}, {0, 0, -1}, {1, 0, -1}, {0, 1, -1}},
-                         {{0, 1, 2, 3}, {4, 5, 6, 7}}};
+  // validate_tetrahedral_mesh does not look for) and shares point 0 with it, so both are one
+  // part: every sub-knot of the apex, along its outward pseudo-normal (up), lies in tetrahedron
+  // 0, however small the spread.
+  TetrahedralMesh domain{{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 1}, {0.3, 0.3, 0}, {0, 0, -1}, {1, 0, -1}},
+                         {{0, 1, 2, 3}, {4, 5, 6, 0}}};
   orient_positively(domain);
   ASSERT_NO_THROW(validate_tetrahedral_mesh(domain));
+  // Parts that share no point are separate splines (docs/simplex-splines.md, "Parts"): there a
+  // sub-knot in the other part is allowed.
+  TetrahedralMesh apart{{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 1}, {0.3, 0.3, 0}, {0, 0, -1}, {1, 0, -1}, {0, 1, -1}},
+                        {{0, 1, 2, 3}, {4, 5, 6, 7}}};
+  orient_positively(apart);
+  EXPECT_NO_THROW(validate_knot_clouds(apart, generate_knot_clouds(apart, 2)));
   const InvalidInput e = expect_invalid([&] { generate_knot_clouds(domain, 2); });
   EXPECT_EQ(e.where(), "tetrahedra[1]") << e.what();
   EXPECT_NE(e.message().find("of point 4 inside Ω (in tetrahedra[0])"), std::string::npos) << e.what();

@@ -74,13 +74,18 @@ struct PointCloudDomainOptions {
   double jitter = 1e-2;
   /// Remove the Delaunay tetrahedra with an edge midpoint outside the occupancy map.
   bool clip_to_occupancy = true;
+  /// Primary knots on a body-centred cubic lattice over the points' bounding box (cube corners on
+  /// the box, about primary_knots of them; its Delaunay tetrahedra are congruent up to the
+  /// jitter) instead of data points chosen by farthest-point sampling. Experimental
+  /// (docs/fitting.md, "Baselines": smooth data).
+  bool lattice = false;
 };
 
 struct PointCloudDomain {
   /// The domain: positively oriented, every point used.
   TetrahedralMesh mesh;
   /// For each point of the mesh, the index of the data point it is (or was moved from by the
-  /// jitter).
+  /// jitter); -1 for a lattice point (`lattice`) or a point of a cut at an interface.
   std::vector<int> data_index;
   std::vector<VertexKind> kinds;
   /// Tetrahedra of the Delaunay tetrahedralisation before clipping.

@@ -40,6 +40,13 @@ std::vector<BoundaryFace> boundary_faces(const TetrahedralMesh& mesh);
 /// For each point, whether it lies on a boundary face (the same assumptions as boundary_faces).
 std::vector<bool> boundary_vertices(const TetrahedralMesh& mesh);
 
+/// The part of each tetrahedron: tetrahedra that share a point (by index) are in one part, parts
+/// numbered by their lowest tetrahedron. Parts may touch geometrically without sharing points (a
+/// material interface whose points are duplicated, docs/fitting.md "Sharp features"); a simplex
+/// spline over such a domain is one spline per part (docs/simplex-splines.md). Indices must be in
+/// range.
+std::vector<int> tetrahedron_parts(const TetrahedralMesh& mesh);
+
 /// Reorients negatively oriented tetrahedra (swaps corners 2 and 3).
 /// \throw InvalidInput naming `tetrahedra[i]` for a degenerate one (exact orientation predicate)
 /// or one with an index out of range or a repeated corner, or naming `points[i]` for a

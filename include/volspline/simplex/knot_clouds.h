@@ -23,6 +23,11 @@ struct KnotClouds {
 
 struct KnotCloudOptions {
   double spread = 0.15;  /* sub-knot distance as a fraction of the vertex's shortest incident edge */
+  /// tan of the angle by which a boundary vertex's sub-knots lean from its outward pseudo-normal
+  /// (around it, in the cloud's fixed directions), halved with the spread; 0: on the ray. At
+  /// wedges of Ω sharper than about 65° a lean lets the basis sum to less than 1 near the edge
+  /// (docs/fitting.md, "Sharp features"); a domain cut at an interface uses 0.
+  double lean = 0.5;
 };
 
 /// The degrees the clouds support: 0..kMaxKnotCloudDegree.

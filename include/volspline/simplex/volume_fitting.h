@@ -165,6 +165,12 @@ struct KnotOptimisationReport {
 
 struct VolumeFitOptions {
   int degree = 2;
+  /// Sharp features (§4.2): where > 0, neighbouring data points whose values (each attribute
+  /// normalised to [0, 1]) differ by more than this are on two sides of a jump; the two regions
+  /// this makes (mesh/material_interface.h) get the surface between them as a domain interface
+  /// (mesh/interface_split.h), with knots on it and no control vector shared across it, so the
+  /// fit jumps there. 0: off. docs/fitting.md, "Sharp features".
+  double jump = 0;
   /// primary_knots 0: points / (4 C(n + 2, 2)), at least 4 (points / 24 for degree 2).
   PointCloudDomainOptions domain;
   /// Knot cloud spread (knot_clouds.h).
@@ -172,6 +178,19 @@ struct VolumeFitOptions {
   ControlVectorFitOptions fit;
   AdaptiveRefinementOptions refinement;
   KnotOptimisationOptions knots;
+};
+
+/// What the sharp-feature step did (VolumeFitOptions::jump).
+struct SharpFeatureReport {
+  bool enabled = false;
+  /// Data points per region, neighbour pairs across the jump, samples of the interface.
+  std::vector<std::size_t> region_points;
+  std::size_t jump_edges = 0, interface_samples = 0;
+  /// Domain tetrahedra cut, points moved onto the interface, points on it (before duplication).
+  std::size_t cut_tetrahedra = 0, snapped_points = 0, interface_points = 0;
+  /// Data points that lie on the other side of the estimated interface than their region: not
+  /// fitted (they would pull the other material's coefficients), but in the errors.
+  std::size_t points_across = 0;
 };
 
 struct VolumeFitStatistics {
@@ -184,6 +203,7 @@ struct VolumeFitStatistics {
   std::vector<FitPhase> phases;
   AdaptiveRefinementReport refinement;
   KnotOptimisationReport knot_optimisation;
+  SharpFeatureReport sharp_features;
 };
 
 struct VolumeFit {
