@@ -120,21 +120,35 @@ async function main() {
   const clipPlane = new Plane(new Vector3(0, 0, -1), 0);
   const clipping = { on: false };
   const materials = [];
+  const partMaterials = [];
   const wire = { on: false };
-  function material() {
+  // The result is drawn see-through while probes are inside it (Lasser Fig. 10 shows the
+  // surfaces through the point inside the solid's outline).
+  const seeThrough = { on: data.probes.some((p) => p.shown) };
+  function translucent(m) {
+    m.transparent = seeThrough.on;
+    m.opacity = seeThrough.on ? 0.3 : 1;
+    m.depthWrite = !seeThrough.on;
+    m.needsUpdate = true;
+  }
+  function material(ofPart) {
     const m = new MeshStandardMaterial({ vertexColors: true, side: DoubleSide, roughness: 0.75, metalness: 0 });
     m.clippingPlanes = clipping.on ? [clipPlane] : [];
     m.wireframe = wire.on;
     materials.push(m);
+    if (ofPart) {
+      partMaterials.push(m);
+      translucent(m);
+    }
     return m;
   }
 
   const loader = new GLTFLoader();
-  async function meshOf(glb) {
+  async function meshOf(glb, ofPart) {
     const gltf = await loader.parseAsync(base64Bytes(glb), '');
     const group = new Group();
     gltf.scene.traverse((o) => {
-      if (o.isMesh) group.add(new Mesh(o.geometry, material()));
+      if (o.isMesh) group.add(new Mesh(o.geometry, material(ofPart)));
     });
     return group;
   }
@@ -161,7 +175,7 @@ async function main() {
   const box = new Box3();
   element('h2', { text: 'Parts' }, panel);
   for (const part of data.parts) {
-    const object = await meshOf(part.glb);
+    const object = await meshOf(part.glb, true);
     scene.add(object);
     box.expandByObject(object);
     parts.push({ part, object });
@@ -197,7 +211,7 @@ async function main() {
   for (const probe of data.probes) {
     const levels = [];
     for (const glb of probe.glbs) {
-      const object = await meshOf(glb);
+      const object = await meshOf(glb, false);
       object.visible = false;
       scene.add(object);
       levels.push(object);
@@ -230,7 +244,7 @@ async function main() {
 
   const size = box.getSize(new Vector3());
   const radius = Math.max(size.length() / 2, 1e-9);
-  marker.scale.setScalar(radius / 60);
+  marker.scale.setScalar(radius / 40);
 
   // Display: wireframe and a clipping plane across the box along x, y or z.
   element('h2', { text: 'Display' }, panel);
@@ -243,6 +257,15 @@ async function main() {
       m.wireframe = wire.on;
       m.needsUpdate = true;
     }
+    redraw();
+  });
+  const seeLabel = element('label', {}, panel);
+  const seeCheck = element('input', { type: 'checkbox', id: 'vs-translucent' }, seeLabel);
+  seeCheck.checked = seeThrough.on;
+  seeLabel.appendChild(document.createTextNode(' parts see-through'));
+  seeCheck.addEventListener('change', () => {
+    seeThrough.on = seeCheck.checked;
+    partMaterials.forEach(translucent);
     redraw();
   });
   const clipLabel = element('label', {}, panel);
