@@ -6,6 +6,7 @@
 #include "volspline/core/error.h"
 #include "volspline/mesh/mesh_checks.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/mesh/vertex_clustering.h"
 #include "volspline/render/colormap.h"
 #include "viewer_script.h"
 
@@ -118,12 +119,28 @@ std::string interactive_page_html(const InteractivePage& page) {
     colors.push_back(colormap_color(page.color_bar->map, span > 0 ? (s - page.color_bar->min) / span : 0.5));
   }
 
+  const ClusteredMesh shown = reduce_to_triangle_budget(page.mesh, page.max_triangles);
+  if (shown.cell_size > 0 && !colors.empty()) {
+    std::vector<Eigen::Vector3d> mean(shown.mesh.num_vertices(), Eigen::Vector3d::Zero());
+    std::vector<int> members(shown.mesh.num_vertices(), 0);
+    for (std::size_t v = 0; v < colors.size(); ++v) {
+      const auto c = static_cast<std::size_t>(shown.cluster_of_vertex[v]);
+      mean[c] += colors[v];
+      ++members[c];
+    }
+    for (std::size_t c = 0; c < mean.size(); ++c) mean[c] /= std::max(members[c], 1);
+    colors = std::move(mean);
+  }
+
   nlohmann::json data;
   data["title"] = page.title;
+  data["reduced"] = nullptr;
+  if (shown.cell_size > 0)
+    data["reduced"] = {{"triangles", page.mesh.num_triangles()}, {"shown", shown.mesh.num_triangles()}, {"cell_size", shown.cell_size}};
   data["command"] = page.command;
   data["info"] = page.info;
   data["parts"] = nlohmann::json::array();
-  for (const auto& [number, part] : page_meshes_by_part(page.mesh, colors))
+  for (const auto& [number, part] : page_meshes_by_part(shown.mesh, colors))
     data["parts"].push_back({{"name", part_name(number)},
                              {"number", number},
                              {"srgb", srgb_json(part_color(number))},

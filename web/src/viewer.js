@@ -8,10 +8,12 @@
 //   probes: [{name, label, part, values, glbs, initial}]   one glTF per level; the slider shows one
 //   probe_points: {probes: [i, j, k], points: [[x, y, z], ...]}   V(u_i, v_j, w_k), i fastest
 //   color_bar: {title, min, max, stops: [[r, g, b], ...]} or null
+//   reduced: {triangles, shown, cell_size} where the result is shown with fewer triangles, or null
 //   info: any JSON object, shown as nested lists
 //
 // When everything is loaded and drawn, document.body gets data-ready="1" and
-// window.volsplinePage holds what the browser tests read (load time, triangle counts).
+// window.volsplinePage holds what the browser tests read (readyAt: milliseconds from the start of
+// navigation until drawn; loadMilliseconds: the viewer's own share).
 import {
   AmbientLight,
   Box3,
@@ -191,6 +193,14 @@ async function main() {
     label.appendChild(document.createTextNode(`${part.name} (${part.number}): ${part.triangles} triangles`));
   }
 
+  if (data.reduced) {
+    element('p', {
+      id: 'vs-reduced',
+      text: `Shown with ${data.reduced.shown} of its ${data.reduced.triangles} triangles (vertices clustered in cubes of ` +
+        `${Number(data.reduced.cell_size).toPrecision(3)}); the mesh file has them all.`,
+    }, panel);
+  }
+
   // Probes: one slider each, showing the precomputed mesh of the level it points at.
   const probes = [];
   const marker = new Mesh(new SphereGeometry(1, 16, 12), new MeshStandardMaterial({ color: 0xd01010 }));
@@ -322,6 +332,7 @@ async function main() {
 
   window.volsplinePage = {
     loadMilliseconds: performance.now() - started,
+    readyAt: performance.now(),
     frames: () => frame,
     draw,
   };

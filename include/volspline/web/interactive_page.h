@@ -69,6 +69,10 @@ struct InteractivePage {
   nlohmann::json info = nlohmann::json::object();
   /// The command line that wrote the page, shown under the description; empty for none.
   std::string command;
+  /// A result with more triangles is shown reduced to at most this many by vertex clustering
+  /// (mesh/vertex_clustering.h; colours averaged like positions), so that the page stays small
+  /// and quick to open; the page says so. Probe meshes are shown as they are.
+  std::size_t max_triangles = 80000;
 };
 
 /// Whether this build of volspline carries the viewer script (three.js was installed when it was
