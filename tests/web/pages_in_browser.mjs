@@ -117,13 +117,13 @@ try {
     const started = Date.now();
     await page.goto(pathToFileURL(file).href, { waitUntil: 'load' });
     await page.waitForFunction(() => document.body && document.body.dataset.ready, { timeout: 20000 });
-    // From the start of navigation until the viewer has drawn (the page's own clock), and as
-    // the test saw it.
+    // As the test saw it (from the request to navigate until the viewer has drawn: what the
+    // limit applies to), and by the page's own clock from the start of its navigation.
     const openMs = await page.evaluate(() => Math.round(window.volsplinePage.readyAt));
     const wallMs = Date.now() - started;
     const ready = await page.evaluate(() => document.body.dataset.ready);
     check(ready === '1', `${name}: the viewer did not finish (${ready})`);
-    check(openMs < MAX_OPEN_MS, `${name}: opened in ${openMs} ms, the limit is ${MAX_OPEN_MS}`);
+    check(wallMs < MAX_OPEN_MS, `${name}: opened in ${wallMs} ms, the limit is ${MAX_OPEN_MS}`);
     const before = await canvasStatistics(page);
     check(before.covered > 0.01 && before.covered < 0.95, `${name}: the object covers ${(100 * before.covered).toFixed(1)}% of the canvas`);
     check(before.colours >= 4, `${name}: only ${before.colours} colours on the canvas`);
