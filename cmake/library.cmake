@@ -86,7 +86,7 @@ set(VOLSPLINE_COMPONENT_RULES
   "cgal=mesh/(tetrahedral_mesh|tetrahedron_locator|longest_edge_bisection|delaunay_tetrahedralization|point_cloud_domain|surface_tetrahedralization)\\.cpp$"
   "cgal=render/xray_image\\.cpp$"
   "core=io/(atomic_file|volume_data|volume_data_inr|volume_data_ply)\\.cpp$"
-  "models=(io|pipeline|deform)/"
+  "models=(io|pipeline|deform|web)/"
   "models=boxspline/scene_file\\.cpp$"
   # Text labels (stb_easy_font) and the colour bars drawn with them: core with stb, else nowhere.
   "stb=render/(text|color_bar)\\.cpp$")

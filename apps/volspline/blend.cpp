@@ -40,6 +40,7 @@ void add_blend_command(CLI::App& app) {
   cmd->add_flag("--ascii", *ascii, "write PLY or STL as text");
   cmd->add_flag("--edges", *edges, "draw the triangle edges in the picture");
   cmd->add_option("--size", *size, "picture size W,H in pixels (default 800,600)");
+  const auto html = add_html_option(cmd);
   cmd->callback([=] {
     const MeshFormat format = mesh_format_from_path(*out);
     if (!png->empty() && std::filesystem::path(*png).extension() != ".png")
@@ -47,6 +48,7 @@ void add_blend_command(CLI::App& app) {
     if (*project && *method != "exact") throw InvalidInput("--project needs --method exact", "--project");
     const auto wh = parse_integers(*size, 2, 16, "--size");
     if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + *size + "'", "--size");
+    check_html_option(*html);
     const Scene scene = read_scene(*in);
     const ZeroSetOptions options{.levels = *levels,
                                  .method = *method == "exact" ? ZeroSetMethod::Exact : ZeroSetMethod::Control,
@@ -56,9 +58,7 @@ void add_blend_command(CLI::App& app) {
     if (result.mesh.num_triangles() == 0)
       reporter().warn("the zero set does not cross the meshed region; writing an empty mesh");
     const ZeroSetStats& s = result.stats;
-    std::string stats_text;
-    if (!stats->empty()) {
-      nlohmann::json j{{"method", *method},
+    const nlohmann::json stats_json{{"method", *method},
                        {"levels", *levels},
                        {"projected", *project},
                        {"grid_spacing", s.grid_spacing},
@@ -71,8 +71,7 @@ void add_blend_command(CLI::App& app) {
                        {"boundary_edges", s.boundary_edges},
                        {"nonmanifold_edges", s.nonmanifold_edges},
                        {"seconds", s.seconds}};
-      stats_text = json_text(j) + "\n";
-    }
+    const std::string stats_text = json_text(stats_json) + "\n";
     RenderOptions render;
     render.width = wh[0];
     render.height = wh[1];
@@ -81,6 +80,13 @@ void add_blend_command(CLI::App& app) {
       const ProgressPhase phase(options.progress, "writing");
       write_mesh_and_picture(result.mesh, *out, format, *ascii, *png, render);
       if (!stats->empty()) write_file_atomically(*stats, stats_text);
+      if (!html->empty()) {
+        InteractivePage page;
+        page.title = "blend of " + *in;
+        page.mesh = result.mesh;
+        page.info = {{"scene", *in}, {"blend", stats_json}};
+        write_html_page(*html, std::move(page));
+      }
     }
     std::cout << "wrote " << *out << ": " << s.vertices << " vertices, " << s.triangles << " triangles ("
               << (s.closed ? "closed" : "not closed: " + std::to_string(s.boundary_edges) + " boundary edges") << "), grid spacing "

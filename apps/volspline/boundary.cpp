@@ -22,6 +22,7 @@
 #include "volspline/io/model_formats.h"
 #include "volspline/io/model_volumes.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/pipeline/interactive_model_page.h"
 
 namespace volspline::cli {
 
@@ -29,7 +30,7 @@ namespace {
 
 struct BoundaryArguments {
   std::shared_ptr<ModelInput> input;
-  std::string out, bounds = "bezier", method = "adaptive", stop = "flatness", stats, png, size = "800,600";
+  std::string out, bounds = "bezier", method = "adaptive", stop = "flatness", stats, png, size = "800,600", html;
   double tol = 1e-3;
   std::int64_t max_cells = 200000;
   int resolution = 64, face_resolution = 24, min_level = 3;
@@ -160,6 +161,7 @@ void run_boundary(const BoundaryArguments& a) {
     throw InvalidInput("expected a file name ending in .png, got '" + a.png + "'", "--png");
   const auto wh = parse_integers(a.size, 2, 16, "--size");
   if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + a.size + "'", "--size");
+  check_html_option(a.html);
   BoundaryOptions options = boundary_options(a);
   options.progress = command_progress();
   const Model model = [&] {
@@ -239,6 +241,15 @@ void run_boundary(const BoundaryArguments& a) {
   render.height = wh[1];
   // Everything is prepared before anything is committed: stats, mesh and picture appear together.
   write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, json_text(stats), a.stats, options.progress);
+  if (!a.html.empty()) {
+    InteractivePage page;
+    page.title = "boundary of " + a.input->path;
+    page.mesh = mesh;
+    page.info = model_page_info(model, a.input->path);
+    page.info["boundary"] = stats;
+    add_model_probes(page, model, {}, a.input->path);
+    write_html_page(a.html, std::move(page));
+  }
 }
 
 }  // namespace
@@ -268,6 +279,10 @@ void add_boundary_command(CLI::App& app) {
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (implicit surface in orange)");
   cmd->add_option("--size", a->size, "picture size W,H in pixels (default 800,600)");
+  a->html = "";
+  cmd->add_option("--html", a->html,
+                  "also write an interactive page: the boundary in three.js with parts, probes, clipping and the model's "
+                  "description, one self-contained file (docs/web-pages.md)");
   cmd->add_option("--iso-attribute", a->iso_attribute,
                   "a simplex_spline_volume: also its isosurface NAME:VALUE of an attribute (repeatable; the domain boundary s(dOmega) "
                   "is always written, part 17)");

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <charconv>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <cmath>
@@ -140,6 +141,57 @@ std::shared_ptr<ModelInput> add_model_input(CLI::App* cmd) {
   cmd->add_option("MODEL", input->path, "model file: .json, G+Smo .xml, IRIT .itd or .vtu (docs/formats.md)")->required();
   cmd->add_option("--input-format", input->format, "json, gismo, irit or vtu, overriding the extension");
   return input;
+}
+
+namespace {
+
+std::string& command_line_storage() {
+  static std::string line;
+  return line;
+}
+
+}  // namespace
+
+void remember_command_line(int argc, const char* const* argv) {
+  std::string line = "volspline";
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.,:/=+@%") ==
+                                           std::string_view::npos;
+    if (plain) {
+      line += " " + std::string(arg);
+      continue;
+    }
+    line += " '";
+    for (const char c : arg) line += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += "'";
+  }
+  command_line_storage() = line;
+}
+
+const std::string& remembered_command_line() { return command_line_storage(); }
+
+std::shared_ptr<std::string> add_html_option(CLI::App* cmd) {
+  auto html = std::make_shared<std::string>();
+  cmd->add_option("--html", *html,
+                  "also write an interactive page: the result in three.js with parts, probes, clipping and the model's "
+                  "description, one self-contained file (docs/web-pages.md)");
+  return html;
+}
+
+void check_html_option(const std::string& html) {
+  if (html.empty()) return;
+  if (std::filesystem::path(html).extension() != ".html")
+    throw InvalidInput("expected a file name ending in .html, got '" + html + "'", "--html");
+  if (!interactive_pages_available())
+    throw InvalidInput("this volspline cannot write interactive pages: " + std::string(interactive_pages_unavailable_reason()), "--html");
+}
+
+void write_html_page(const std::string& html, InteractivePage page) {
+  if (html.empty()) return;
+  if (page.command.empty()) page.command = remembered_command_line();
+  write_file_atomically(html, interactive_page_html(page));
+  std::cout << "wrote " << html << "\n";
 }
 
 }  // namespace volspline::cli

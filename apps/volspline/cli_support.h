@@ -11,6 +11,7 @@
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/mesh_writer.h"
 #include "volspline/render/mesh_renderer.h"
+#include "volspline/web/interactive_page.h"
 
 namespace CLI {
 class App;
@@ -50,6 +51,18 @@ std::string json_text(const nlohmann::json& value, int indent = 2);
 /// negative rather than wrapped to 18446744073709551615.
 /// \throw InvalidInput naming `option` unless 0 <= index < count.
 std::size_t object_index(long long index, std::size_t count, const std::string& option);
+/// Adds `--html OUT.html` to `cmd`: the interactive page of the result (docs/web-pages.md).
+std::shared_ptr<std::string> add_html_option(CLI::App* cmd);
+/// Before any work: unless `html` is empty, it ends in .html and this build can write pages.
+/// \throw InvalidInput naming --html otherwise.
+void check_html_option(const std::string& html);
+/// Unless `html` is empty: writes `page` there (atomically, with the command line that runs now
+/// as its `command` where the page has none) and prints "wrote HTML".
+void write_html_page(const std::string& html, InteractivePage page);
+/// The command line of this run, as `volspline ARGS` with arguments quoted for a POSIX shell
+/// where they need it: set once by main().
+void remember_command_line(int argc, const char* const* argv);
+const std::string& remembered_command_line();
 /// Formats numbers with 17 significant digits separated by spaces.
 std::string join_numbers(const double* values, std::size_t count);
 

@@ -19,7 +19,9 @@
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 #include "volspline/extract/face_tessellation.h"
+#include "volspline/mesh/mesh_checks.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/pipeline/interactive_model_page.h"
 #include "volspline/render/image.h"
 #include "volspline/render/mesh_renderer.h"
 
@@ -44,8 +46,9 @@ void add_demo_command(CLI::App& app) {
     if (OutputTransaction* outputs = OutputTransaction::current()) outputs->publish_each_file();
     create_output_directories(*dir);
     DemoRun demo(*dir, *only, command_progress());
-    // `make` is the `volspline make` arguments that build the same volume; empty where no
-    // subcommand does (then `demo --only` reproduces it).
+    // `make` is the `volspline make` arguments that build the same volume; empty where none does:
+    // then the model is a file of the repository's examples/ (the same bytes), copied into the
+    // demo folder's examples/.
     struct Example {
       std::string name, description;
       BSplineVolume volume;
@@ -74,30 +77,47 @@ void add_demo_command(CLI::App& app) {
     };
     for (const auto& e : examples) {
       if (!demo.wants(e.name)) continue;
+      const std::string model_file = e.make.empty() ? "examples/" + e.name + ".json" : e.name + ".json";
+      const std::string command = (e.make.empty() ? "" : "volspline make " + e.make + " -o " + model_file + " && ") + "volspline faces " +
+                                  model_file + " -o " + e.name + ".ply --resolution 32 --png " + e.name + ".png --html " + e.name + ".html";
+      std::string page_file;
       {
         const ProgressPhase phase(demo.progress(), e.name);
         Model model;
         model.objects.push_back({e.name, true, e.volume, nullptr});  // bezier_volume when it is one span on [0,1]^3
         write_model(model, demo.path(e.name + ".json"));
-        // As `volspline faces --resolution 32` (the command in the gallery) tessellates and renders.
+        if (e.make.empty()) {
+          create_output_directories(demo.dir() / "examples");
+          write_model(model, demo.path(model_file));
+        }
+        // As `volspline faces --resolution 32 --html` (the command in the gallery) tessellates, renders and
+        // writes the page.
         const TriangleMesh mesh = tessellate_faces(e.volume, {.resolution = 32});
         write_mesh(mesh, demo.path(e.name + ".ply"));
         write_png(render_mesh(mesh, RenderOptions{}), demo.path(e.name + ".png"));
+        InteractivePage page;
+        page.title = "faces of " + model_file;
+        page.mesh = mesh;
+        page.info = model_page_info(model, model_file);
+        const auto stats = edge_statistics(mesh);
+        page.info["faces"] = {{"vertices", mesh.num_vertices()}, {"triangles", mesh.num_triangles()}, {"closed", stats.closed()}};
+        add_model_probes(page, model, {}, model_file);
+        page_file = demo.write_page(e.name + ".html", std::move(page), command);
       }
       std::cout << e.name << ": " << e.description << "\n  " << demo.path(e.name + ".json") << "\n  " << demo.path(e.name + ".ply")
                 << "\n  " << demo.path(e.name + ".png") << "\n";
-      demo.gallery().add({e.name, e.description, {e.name + ".png"},
-                          e.make.empty() ? demo_only_command(e.name)
-                                         : "volspline make " + e.make + " -o " + e.name + ".json && volspline faces " + e.name +
-                                               ".json -o " + e.name + ".ply --resolution 32 --png " + e.name + ".png"});
+      demo.gallery().add({e.name, e.description, {e.name + ".png"}, command, page_file});
     }
     // Free-form deformation (Lasser §III.2): a bar bent and twisted by a segmented lattice.
     if (demo.wants("ffd-bent-bar")) {
+      TriangleMesh bent;
+      Model lattice;
       {
         const ProgressPhase phase(demo.progress(), "ffd-bent-bar");
         const FfdExample ffd = bent_bar_ffd_example();
-        write_model(lattice_to_model(ffd.lattice), demo.path("ffd-bent-bar-lattice.json"));
-        const TriangleMesh bent = deform_mesh(ffd.lattice, ffd.mesh);
+        lattice = lattice_to_model(ffd.lattice);
+        write_model(lattice, demo.path("ffd-bent-bar-lattice.json"));
+        bent = deform_mesh(ffd.lattice, ffd.mesh);
         write_mesh(bent, demo.path("ffd-bent-bar.ply"));
         RenderOptions options;
         options.color = ColorMode::Single;
@@ -106,7 +126,12 @@ void add_demo_command(CLI::App& app) {
       const std::string description = "a 4 x 1 x 1 bar deformed by a degree (3, 2, 2) lattice with 3 cells (Lasser §III.2)";
       std::cout << "ffd-bent-bar: " << description << "\n  " << demo.path("ffd-bent-bar-lattice.json") << "\n  "
                 << demo.path("ffd-bent-bar.ply") << "\n  " << demo.path("ffd-bent-bar.png") << "\n";
-      demo.gallery().add({"ffd-bent-bar", description, {"ffd-bent-bar.png"}, demo_only_command("ffd-bent-bar")});
+      InteractivePage page;
+      page.title = "ffd-bent-bar";
+      page.mesh = bent;
+      page.info = {{"lattice", model_page_info(lattice, "ffd-bent-bar-lattice.json")}, {"description", description}};
+      const std::string page_file = demo.write_page("ffd-bent-bar.html", std::move(page), demo_only_command("ffd-bent-bar"));
+      demo.gallery().add({"ffd-bent-bar", description, {"ffd-bent-bar.png"}, demo_only_command("ffd-bent-bar"), page_file});
     }
     write_boundary_demo(demo);
     write_blend_demo(demo);  // Peters-Wittman blends, figures 1a-4c

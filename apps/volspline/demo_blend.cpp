@@ -25,10 +25,15 @@ void write_blend_demo(DemoRun& demo) {
     RenderOptions options;
     options.view_direction = Eigen::Vector3d(-1.0, -1.6, -0.9);
     write_png(render_mesh(figure.mesh, options), base.string() + ".png");
+    InteractivePage page;
+    page.title = figure.name;
+    page.mesh = figure.mesh;
+    page.info = {{"figure", "Peters-Wittman 1995, " + figure.description}};
+    const std::string page_file = demo.write_page(figure.name + ".html", std::move(page), demo_only_command(figure.name));
     phase.reset();
     std::cout << figure.name << ": " << figure.description << "\n  " << base.string() << ".ply\n  " << base.string() << ".png\n";
     demo.gallery().add({figure.name, "Peters-Wittman 1995, " + figure.description, {figure.name + ".png"},
-                        demo_only_command(figure.name)});
+                        demo_only_command(figure.name), page_file});
   }
 }
 

@@ -13,6 +13,7 @@
 #include "cli_support.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/pipeline/interactive_model_page.h"
 #include "volspline/render/image.h"
 #include "volspline/render/mesh_renderer.h"
 
@@ -33,6 +34,9 @@ void write_boundary_demo(DemoRun& demo) {
     const std::string name = e.name + "-boundary";
     if (!demo.wants(name)) continue;
     SolidBoundary b;
+    const std::string command = "volspline make " + e.name + " -o " + e.name + ".json && volspline boundary " + e.name + ".json -o " +
+                                name + ".ply --snap --png " + name + ".png --html " + name + ".html";
+    std::string page_file;
     {
       const ProgressPhase phase(demo.progress(), name);
       // As `volspline boundary --snap` with its defaults (the command in the gallery).
@@ -48,6 +52,15 @@ void write_boundary_demo(DemoRun& demo) {
                                     {"max_domain_distance", b.stats.max_domain_distance},
                                     {"seconds", b.stats.seconds_total}};
       write_file_atomically(demo.path(name + "-stats.json"), json_text(stats) + "\n");
+      Model model;
+      model.objects.push_back({e.name, true, e.volume, nullptr});
+      InteractivePage page;
+      page.title = "boundary of " + e.name + ".json";
+      page.mesh = b.mesh;
+      page.info = model_page_info(model, e.name + ".json");
+      page.info["boundary"] = stats;
+      add_model_probes(page, model, {}, e.name + ".json");
+      page_file = demo.write_page(name + ".html", std::move(page), command);
     }
     std::cout << name << ": " << e.description << "; " << b.stats.cells_examined << " cells examined, " << b.stats.cells_kept
               << " kept, " << b.stats.triangles_of(Part::JacobianZero) << " implicit triangles\n  " << demo.path(name + ".ply") << "\n  "
@@ -55,8 +68,8 @@ void write_boundary_demo(DemoRun& demo) {
     demo.gallery().add({name,
                         "Boundary (faces and the implicit surface J = 0 in orange), " + e.description,
                         {name + ".png"},
-                        "volspline make " + e.name + " -o " + e.name + ".json && volspline boundary " + e.name + ".json -o " +
-                            name + ".ply --snap --png " + name + ".png"});
+                        command,
+                        page_file});
   }
 }
 

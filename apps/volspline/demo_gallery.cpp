@@ -51,23 +51,30 @@ std::string Gallery::html() const {
   std::ostringstream page;
   page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << html_escape(heading_)
        << "</title>\n<style>\n"
-       << "body { font-family: sans-serif; margin: 2em; max-width: 1400px; }\n"
-       << "section { border-top: 1px solid #ccc; padding: 0.5em 0 1em; }\n"
-       << "img { width: 400px; max-width: 100%; border: 1px solid #ddd; margin: 0 0.5em 0.5em 0; }\n"
-       << "pre { background: #f4f4f4; padding: 0.5em; white-space: pre-wrap; }\n"
+       << "body { font-family: sans-serif; margin: 1.5em; }\n"
+       << "main { display: grid; grid-template-columns: repeat(auto-fill, minmax(320px, 1fr)); gap: 16px; }\n"
+       << "section { border: 1px solid #ccc; border-radius: 4px; padding: 8px; }\n"
+       << "section h2 { font-size: 1.05em; margin: 0.3em 0; }\n"
+       << "section p { font-size: 0.9em; margin: 0.3em 0; }\n"
+       << "img { width: 100%; border: 1px solid #eee; }\n"
+       << "div.pictures { display: flex; gap: 4px; }\n"
+       << "div.pictures a { flex: 1; min-width: 0; }\n"
+       << "pre { background: #f4f4f4; padding: 0.4em; white-space: pre-wrap; font-size: 0.8em; margin: 0.3em 0 0; }\n"
        << "</style>\n</head>\n<body>\n<h1>" << html_escape(heading_) << "</h1>\n"
        << "<p>" << entries_.size()
-       << " examples. Each command, run in this folder, writes the pictures shown with it.</p>\n";
+       << " examples. A picture opens the example's interactive page (turn it, cut it, switch parts, move the probes) where "
+          "it has one. Each command, run in this folder, writes the pictures and the page shown with it.</p>\n<main>\n";
   for (const GalleryEntry& e : entries_) {
     page << "<section id=\"" << html_escape(e.title) << "\">\n<h2>" << html_escape(e.title) << "</h2>\n<p>"
-         << html_escape(e.description) << "</p>\n<div>";
+         << html_escape(e.description) << "</p>\n<div class=\"pictures\">";
     for (const std::string& picture : e.pictures) {
       const std::string link = html_escape(url_escape(picture));
-      page << "<a href=\"" << link << "\"><img src=\"" << link << "\" alt=\"" << html_escape(e.title) << "\" loading=\"lazy\"></a>";
+      const std::string target = e.page.empty() ? link : html_escape(url_escape(e.page));
+      page << "<a href=\"" << target << "\"><img src=\"" << link << "\" alt=\"" << html_escape(e.title) << "\" loading=\"lazy\"></a>";
     }
     page << "</div>\n<pre><code>" << html_escape(e.command) << "</code></pre>\n</section>\n";
   }
-  page << "</body>\n</html>\n";
+  page << "</main>\n</body>\n</html>\n";
   return page.str();
 }
 
@@ -99,6 +106,13 @@ void DemoRun::check_selection() const {
   message += "; the examples are:";
   for (const std::string& name : known_) message += " " + name;
   throw InvalidInput(message, "--only");
+}
+
+std::string DemoRun::write_page(const std::string& file, InteractivePage page, const std::string& command) const {
+  if (!interactive_pages_available()) return "";
+  page.command = command;
+  write_file_atomically(dir_ / file, interactive_page_html(page));
+  return file;
 }
 
 }  // namespace volspline::cli

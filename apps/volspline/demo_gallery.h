@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "volspline/core/progress.h"
+#include "volspline/web/interactive_page.h"
 
 namespace volspline::cli {
 
@@ -38,6 +39,9 @@ struct GalleryEntry {
   std::vector<std::string> pictures;
   /// A shell command line that, run in the gallery's folder, writes the pictures.
   std::string command;
+  /// The example's interactive page (web/interactive_page.h), relative to the gallery's folder;
+  /// empty where there is none. The thumbnails open it.
+  std::string page{};
 };
 
 /// The entries of a gallery page, in the order added, and the page itself.
@@ -46,7 +50,8 @@ class Gallery {
   explicit Gallery(std::string heading = "volspline demo");
   void add(GalleryEntry entry);
   const std::vector<GalleryEntry>& entries() const { return entries_; }
-  /// The page: a heading, then per entry its title, description, pictures (relative links) and
+  /// The page: a heading, then a grid of entries, each its pictures as thumbnails (linking to
+  /// the interactive page where there is one, else to the picture), title, description and
   /// command, all text HTML-escaped.
   std::string html() const;
   /// Writes `folder`/index.html atomically. \throw IoError if it cannot be written.
@@ -86,6 +91,10 @@ class DemoRun {
   bool selective() const { return !only_.empty(); }
   /// \throw InvalidInput naming the --only names no writer knew, and the known names.
   void check_selection() const;
+  /// Writes `page` (with `command` as the command that makes it) as `file` in the output folder
+  /// and returns `file`; where this build cannot write interactive pages, writes nothing and
+  /// returns "" (the gallery entry then links its pictures).
+  std::string write_page(const std::string& file, InteractivePage page, const std::string& command) const;
 
  private:
   std::filesystem::path dir_;

@@ -25,6 +25,7 @@
 #include "volspline/mesh/delaunay_tetrahedralization.h"
 #include "volspline/mesh/mesh_reader.h"
 #include "volspline/mesh/surface_tetrahedralization.h"
+#include "volspline/pipeline/interactive_model_page.h"
 #include "volspline/render/image.h"
 #include "volspline/render/mesh_renderer.h"
 #include "volspline/render/xray_image.h"
@@ -37,6 +38,8 @@ namespace {
 void write_tetrahedron_demo(DemoRun& demo) {
   const std::string name = "simplex-tetrahedron-cubic";
   if (!demo.wants(name)) return;
+  const std::string command = demo_only_command(name) + " && volspline view " + name + ".json --cells 4 -o " + name + "-view.png";
+  std::string page_file;
   {
     const ProgressPhase phase(demo.progress(), name);
     const std::vector<Eigen::Vector3d> corners{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -58,13 +61,18 @@ void write_tetrahedron_demo(DemoRun& demo) {
     options.view_direction = Eigen::Vector3d(-1.0, -0.6, -0.5);
     options.edges = true;
     options.smooth_normals = false;
-    write_png(render_mesh(simplex_cell_mesh(volume, 4, 0.7), options), demo.path(name + ".png"));
+    const TriangleMesh cells = simplex_cell_mesh(volume, 4, 0.7);
+    write_png(render_mesh(cells, options), demo.path(name + ".png"));
+    InteractivePage page;
+    page.title = name;
+    page.mesh = cells;
+    page.info = model_page_info(model, name + ".json");
+    page_file = demo.write_page(name + ".html", std::move(page), command);
   }
   const std::string description = "Hua-He-Qin Fig. 1: a cubic DMS spline solid over one tetrahedron (20 control points, moved), "
                                   "as 64 shrunken cells";
   std::cout << name << ": " << description << "\n  " << demo.path(name + ".json") << "\n  " << demo.path(name + ".png") << "\n";
-  demo.gallery().add({name, description, {name + ".png"},
-                      demo_only_command(name) + " && volspline view " + name + ".json --cells 4 -o " + name + "-view.png"});
+  demo.gallery().add({name, description, {name + ".png"}, command, page_file});
 }
 
 // A figure made from files: `volspline make simplex-spline --surface SURFACE --cell-size H
@@ -158,15 +166,18 @@ void write_figure(DemoRun& demo, const SimplexFigure& f) {
     std::cout << "  " << demo.path(xray_name + ".png") << "\n";
   }
   const auto view = [&](const std::string& name, const ViewArguments& a, const std::string& what) {
-    ViewArguments run = a;
+    ViewArguments arguments = a;
+    if (interactive_pages_available()) arguments.html = name + ".html";
+    ViewArguments run = arguments;
     run.model = (dir / a.model).string();
     run.image = (dir / a.image).string();
+    if (!run.html.empty()) run.html = (dir / run.html).string();
     {
       const ProgressPhase phase(demo.progress(), name);
       std::ostringstream log;
       run_view(run, log);
     }
-    demo.gallery().add({name, f.figure + ": " + what, {a.image}, make_command(f) + " && " + view_command_line(a)});
+    demo.gallery().add({name, f.figure + ": " + what, {a.image}, make_command(f) + " && " + view_command_line(arguments), arguments.html});
     std::cout << "  " << run.image << "\n";
   };
   if (iso) {

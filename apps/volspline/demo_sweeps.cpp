@@ -43,6 +43,7 @@ void write_sweep_example(DemoRun& demo, const SweepDemoExample& example) {
   const std::string picture = example.name + ".png";
   double volume = 0;
   bool closed = false;
+  std::string page_file;
   {
     const ProgressPhase phase(demo.progress(), example.name);
     const auto patches = swept_patches(example.solid());
@@ -54,6 +55,11 @@ void write_sweep_example(DemoRun& demo, const SweepDemoExample& example) {
     const SweptEnvelope trimmed = swept_envelope(patches, options);
     volume = trimmed.stats.trimming.volume;
     closed = trimmed.stats.trimming.closed && trimmed.stats.trimming.oriented && trimmed.stats.trimming.self_intersection_free;
+    InteractivePage page;
+    page.title = example.name + ": the trimmed envelope";
+    page.mesh = trimmed.mesh;
+    page.info = {{"description", example.description}, {"volume", volume}, {"closed", closed}};
+    page_file = demo.write_page(example.name + ".html", std::move(page), demo_only_command(example.name));
     RenderOptions render;
     render.width = 640;
     render.height = 480;
@@ -75,7 +81,7 @@ void write_sweep_example(DemoRun& demo, const SweepDemoExample& example) {
   std::cout << example.name << ": " << description << "\n  " << demo.path(picture) << "\n";
   std::vector<std::string> pictures{picture};
   if (example.name == "sweep-fig4") pictures.push_back("sweep-fig4-cut-open.png");
-  demo.gallery().add({example.name, description, pictures, demo_only_command(example.name)});
+  demo.gallery().add({example.name, description, pictures, demo_only_command(example.name), page_file});
 }
 
 }  // namespace

@@ -111,15 +111,18 @@ void write_view_demo(DemoRun& demo) {
   for (const auto& e : examples) {
     const std::string name = e.arguments.image.substr(0, e.arguments.image.size() - 4);
     if (!demo.wants(name)) continue;
-    ViewArguments run = e.arguments;
+    ViewArguments arguments = e.arguments;
+    if (interactive_pages_available()) arguments.html = name + ".html";
+    ViewArguments run = arguments;
     run.model = (dir / run.model).string();
     run.image = (dir / run.image).string();
+    if (!run.html.empty()) run.html = (dir / run.html).string();
     {
       const ProgressPhase phase(demo.progress(), name);
       std::ostringstream log;
       run_view(run, log);
     }
-    demo.gallery().add({e.title, e.description, {e.arguments.image}, view_command_line(e.arguments)});
+    demo.gallery().add({e.title, e.description, {e.arguments.image}, view_command_line(arguments), arguments.html});
     std::cout << name << ": " << e.description << "\n  " << run.image << "\n";
   }
 }

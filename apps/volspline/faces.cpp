@@ -9,6 +9,7 @@
 #include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/pipeline/interactive_model_page.h"
 #include "volspline/render/image.h"
 #include "volspline/render/mesh_renderer.h"
 
@@ -32,12 +33,14 @@ void add_faces_command(CLI::App& app) {
   cmd->add_flag("--edges", *edges, "draw the triangle edges in the picture");
   cmd->add_flag("--transparent", *transparent, "transparent picture background");
   cmd->add_option("--size", *size, "picture size W,H in pixels (default 800,600)");
+  const auto html = add_html_option(cmd);
   cmd->callback([=] {
     const MeshFormat format = mesh_format_from_path(*out);  // reject a bad extension before any work
     if (!png->empty() && std::filesystem::path(*png).extension() != ".png")
       throw InvalidInput("expected a file name ending in .png, got '" + *png + "'", "--png");
     const auto wh = parse_integers(*size, 2, 16, "--size");
     if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + *size + "'", "--size");
+    check_html_option(*html);
     const Model model = input->read();
     TriangleMesh mesh;
     const std::size_t volumes = for_each_volume(model, *in, [&](std::size_t, const ModelObject&, const BSplineVolume& v) {
@@ -50,6 +53,17 @@ void add_faces_command(CLI::App& app) {
     options.transparent_background = *transparent;
     write_mesh_and_picture(mesh, *out, format, *ascii, *png, options);
     const auto stats = edge_statistics(mesh);
+    if (!html->empty()) {
+      InteractivePage page;
+      page.title = "faces of " + *in;
+      page.mesh = mesh;
+      page.info = model_page_info(model, *in);
+      page.info["faces"] = {{"vertices", mesh.num_vertices()},      {"triangles", mesh.num_triangles()},
+                            {"closed", stats.closed()},             {"boundary_edges", stats.boundary_edges},
+                            {"nonmanifold_edges", stats.nonmanifold_edges}};
+      add_model_probes(page, model, {}, *in);
+      write_html_page(*html, std::move(page));
+    }
     std::cout << "wrote " << *out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles from "
               << volumes << " volume(s); " << (stats.closed() ? "closed" : "not closed") << " (" << stats.boundary_edges
               << " boundary, " << stats.nonmanifold_edges << " non-manifold edges)\n";

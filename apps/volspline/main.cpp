@@ -91,6 +91,7 @@ int main(int argc, char** argv) {
   outputs.emplace();
   std::cout.exceptions(std::ios::badbit);
   try {
+    volspline::cli::remember_command_line(argc, argv);
     app.parse(argc, argv);
     // Standard output is checked first: a command whose printed result was lost has failed, and
     // its files are not committed either.

@@ -16,6 +16,7 @@
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_volumes.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/pipeline/interactive_model_page.h"
 
 namespace volspline::cli {
 
@@ -23,7 +24,7 @@ namespace {
 
 struct SweepEnvelopeArguments {
   std::shared_ptr<ModelInput> input;
-  std::string out, bounds = "bezier", trimming = "auto", stats, png, size = "800,600";
+  std::string out, bounds = "bezier", trimming = "auto", stats, png, size = "800,600", html;
   double tol = 1e-3;
   std::int64_t max_cells = 2000000;
   bool superset = false;
@@ -98,6 +99,7 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   else if (a.trimming == "arrangement") options.trimming_method = EnvelopeTrimming::Arrangement;
   else if (a.trimming == "contouring") options.trimming_method = EnvelopeTrimming::Contouring;
   else throw InvalidInput("expected 'auto', 'arrangement' or 'contouring', got '" + a.trimming + "'", "--trimming");
+  check_html_option(a.html);
   options.progress = command_progress();
   const Model model = [&] {
     const ProgressPhase phase(options.progress, "reading");
@@ -144,6 +146,12 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   render.width = wh[0];
   render.height = wh[1];
   write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, stats.dump(2), a.stats, options.progress);
+  InteractivePage page;
+  page.title = "envelope of " + a.input->path;
+  page.mesh = mesh;
+  page.info = model_page_info(model, a.input->path);
+  page.info["envelope"] = stats;
+  write_html_page(a.html, std::move(page));
   if (open)
     std::cerr << "volspline: warning: the trimmed envelope is not a closed, self-intersection-free surface (see above and "
                  "docs/envelopes.md, \"Limits\")\n";
@@ -167,6 +175,9 @@ void add_sweep_envelope_command(CLI::App& app) {
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (parts coloured by source)");
   cmd->add_option("--size", a->size, "picture size W,H in pixels (default 800,600)");
+  cmd->add_option("--html", a->html,
+                  "also write an interactive page: the envelope in three.js with its parts, clipping and the model's "
+                  "description, one self-contained file (docs/web-pages.md)");
   cmd->callback([a] { run_sweep_envelope(*a); });
 }
 

@@ -16,6 +16,7 @@
 #include "volspline/core/progress.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_formats.h"
+#include "volspline/pipeline/interactive_model_page.h"
 #include "volspline/pipeline/solid_view_picture.h"
 #include "volspline/extract/simplex_isosurface.h"
 #include "volspline/extract/simplex_slices.h"
@@ -132,7 +133,7 @@ void write_picture_and_mesh(const ViewArguments& a, const std::string& png, cons
 
 // A simplex spline volume: the isosurfaces ATTRIBUTE:VALUE of its attributes (Hua–He–Qin §6.2),
 // each its own colour of the attribute-isosurface part, shaded with the analytic normals' mesh.
-void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std::ostream& out) {
+void run_simplex_view(const ViewArguments& a, const Model& model, const DmsSplineVolume& volume, std::ostream& out) {
   for (const char* option : {"--iso", "--through", "--core", "--paddlewheel", "--faces", "--cutaway"}) {
     const bool given = (std::string(option) == "--iso" && !a.iso.empty()) || (std::string(option) == "--through" && !a.through.empty()) ||
                        (std::string(option) == "--core" && !a.core.empty()) || (std::string(option) == "--paddlewheel" && !a.paddlewheels.empty()) ||
@@ -229,6 +230,19 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
   const std::string png = png_bytes(render_mesh(mesh, render));
   const MeshFormat mesh_format = a.mesh.empty() ? MeshFormat::Ply : mesh_format_from_path(a.mesh);
   write_picture_and_mesh(a, png, mesh, mesh_format, MeshWriteOptions{});
+  if (!a.html.empty()) {
+    InteractivePage page;
+    page.title = "view of " + a.model;
+    page.mesh = mesh;
+    page.info = model_page_info(model, a.model);
+    page.info["view"] = summary.size() > 2 ? summary.substr(2) : summary;
+    if (colored) {
+      const auto [lo, hi] = scalar_range(mesh, render);
+      page.vertex_scalars = scalars;
+      page.color_bar = ColorBar{render.colormap, lo, hi, color};
+    }
+    write_html_page(a.html, std::move(page));
+  }
   out << "wrote " << a.image << ": " << mesh.num_triangles() << " triangles" << summary;
   if (colored) {
     const auto [lo, hi] = scalar_range(mesh, render);
@@ -243,11 +257,12 @@ void run_simplex_view(const ViewArguments& a, const DmsSplineVolume& volume, std
 void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
   if (std::filesystem::path(a.image).extension() != ".png")
     throw InvalidInput("expected a picture file name ending in .png, got '" + a.image + "'", "--output");
+  check_html_option(a.html);
   if (!a.iso_attribute.empty() || std::filesystem::path(a.model).extension() == ".json" || a.input_format == "json") {
     // A simplex spline volume has no parameter box: its own view (isosurfaces and slices).
     const Model model = read_model_file(a.model, a.input_format);
     for (const ModelObject& object : model.objects)
-      if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) return run_simplex_view(a, *volume, out);
+      if (const auto* volume = std::get_if<DmsSplineVolume>(&object.spline)) return run_simplex_view(a, model, *volume, out);
     if (!a.iso_attribute.empty()) throw InvalidInput(a.model + " has no simplex_spline_volume object", "--iso-attribute");
   }
   if (a.iso_edge != 0 || a.iso_subdivisions != 0)
@@ -266,6 +281,24 @@ void run_view(const ViewArguments& a, std::ostream& out, Progress* progress) {
   {
     const ProgressPhase phase(progress, "writing");
     write_picture_and_mesh(a, png_bytes(picture.image), picture.mesh, mesh_format, picture.mesh_fields);
+    if (!a.html.empty()) {
+      InteractivePage page;
+      page.title = "view of " + a.model;
+      page.mesh = picture.mesh;
+      page.vertex_colors = picture.mesh_fields.vertex_colors;
+      page.info = model_page_info(model, a.model);
+      page.info["view"] = {{"triangles", picture.mesh.num_triangles()}, {"volumes", picture.volumes}, {"planes", picture.planes.size()}};
+      if (request.color) {
+        page.color_bar = ColorBar{picture.render.colormap, picture.render.scalar_min, picture.render.scalar_max, request.color->name()};
+        page.info["view"]["color"] = request.color->name();
+        page.info["view"]["range"] = {picture.render.scalar_min, picture.render.scalar_max};
+      }
+      // The slice probe cuts across the first plane shown, or along z.
+      ModelProbeOptions probes;
+      if (!picture.planes.empty()) probes.slice_normal = picture.planes.front().normal;
+      add_model_probes(page, model, probes, a.model);
+      write_html_page(a.html, std::move(page));
+    }
   }
   out << "wrote " << a.image << ": " << picture.mesh.num_triangles() << " triangles from " << picture.volumes << " volume(s)";
   if (!picture.planes.empty()) out << ", " << picture.planes.size() << " plane(s)";
@@ -296,6 +329,7 @@ std::string view_command_line(const ViewArguments& a) {
   option("--color", a.color);
   option("--range", a.range);
   option("--mesh", a.mesh);
+  option("--html", a.html);
   if (a.resolution != ViewArguments{}.resolution) option("--resolution", std::to_string(a.resolution));
   option("--camera", a.camera);
   if (a.size != ViewArguments{}.size) option("--size", a.size);
@@ -337,6 +371,9 @@ void add_view_command(CLI::App& app) {
                   "isosurfaces and slices of a simplex_spline_volume instead cut every domain tetrahedron alike into K x K x K sub-tetrahedra (uniform)")
       ->check(CLI::Range(1, 64));
   cmd->add_option("--mesh", a->mesh, "also write the shown surfaces: .ply (with the field as a vertex property), .obj, .glb (field colours)");
+  cmd->add_option("--html", a->html,
+                  "also write an interactive page: what is shown in three.js with parts, probes, clipping, the colour bar and "
+                  "the model's description, one self-contained file (docs/web-pages.md)");
   cmd->add_option("--resolution", a->resolution, "segments per parameter direction, plus every knot (default 32)")->check(CLI::Range(1, 512));
   cmd->add_option("--camera", a->camera, "view direction DX,DY,DZ, optionally followed by an up vector UX,UY,UZ");
   cmd->add_option("--size", a->size, "picture size W,H in pixels (default 800,600)");

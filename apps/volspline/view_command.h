@@ -13,6 +13,8 @@ namespace volspline::cli {
 
 struct ViewArguments {
   std::string model, input_format, image, mesh, color, range, camera, size = "800,600", through, core;
+  /// --html: the interactive page of what is shown (docs/web-pages.md); empty for none.
+  std::string html;
   std::vector<std::string> iso, slices, planes, paddlewheels;
   /// Isosurfaces ATTRIBUTE:VALUE of a simplex spline volume (repeatable).
   std::vector<std::string> iso_attribute;

@@ -18,6 +18,7 @@
 #include "volspline/construct/example_solids.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
+#include "volspline/web/interactive_page.h"
 
 namespace volspline {
 namespace {
@@ -261,7 +262,10 @@ std::string html_unescape(std::string text) {
 // One run of the demo (slow under sanitizers) for all its checks: every example's files, then the
 // gallery page.
 TEST_F(Cli, DemoWritesEveryExampleAndItsGallery) {
-  const auto out = dir() / "demo";
+  // The demo folder stays for the browser test of its interactive pages (tests/CMakeLists.txt:
+  // WebPages.OpenInChromium requires this test as its fixture).
+  const std::filesystem::path out = VOLSPLINE_DEMO_GALLERY_DIR;
+  std::filesystem::remove_all(out);
   // Hua-He-Qin Figs. 5 and 6 read the repository's examples and the shared data (Fig. 6 is skipped
   // where that is absent).
   const std::filesystem::path data = std::filesystem::path(VOLSPLINE_SOURCE_DIR) / ".." / "shared" / "data";
@@ -300,7 +304,7 @@ TEST_F(Cli, DemoWritesEveryExampleAndItsGallery) {
 
   // Each section's title, pictures and command.
   std::map<std::string, std::pair<std::vector<std::string>, std::string>> entries;
-  const std::regex section("<h2>([^<]*)</h2>[\\s\\S]*?<div>([\\s\\S]*?)</div>\n<pre><code>([^<]*)</code>");
+  const std::regex section("<h2>([^<]*)</h2>[\\s\\S]*?<div[^>]*>([\\s\\S]*?)</div>\n<pre><code>([^<]*)</code>");
   for (std::sregex_iterator it(html.begin(), html.end(), section), end; it != end; ++it) {
     std::vector<std::string> srcs;
     const std::string div = (*it)[2].str();
@@ -314,17 +318,35 @@ TEST_F(Cli, DemoWritesEveryExampleAndItsGallery) {
   EXPECT_EQ(shown, pictures.size());
   EXPECT_LE(entries.size(), pictures.size());
   for (const auto& [title, entry] : entries) EXPECT_EQ(entry.second.rfind("volspline ", 0), 0u) << title << ": " << entry.second;
+  // Every page the gallery links exists, and the thumbnails of an entry with a page open it.
+  const std::regex page_link("<a href=\"([^\"]+\\.html)\">");
+  std::size_t pages = 0;
+  for (std::sregex_iterator it(html.begin(), html.end(), page_link), end; it != end; ++it, ++pages)
+    EXPECT_TRUE(std::filesystem::exists(out / (*it)[1].str())) << (*it)[1].str();
+  if (interactive_pages_available()) {
+    EXPECT_GE(pages, 30u);
+  }
+  // The solids built in code that no `make` kind builds are files of examples/: the same bytes.
+  for (const char* name : {"bent-tricubic", "twisted", "half-cylinder-shell"})
+    EXPECT_EQ(read_file(out / "examples" / (std::string(name) + ".json")),
+              read_file(std::filesystem::path(VOLSPLINE_SOURCE_DIR) / "examples" / (std::string(name) + ".json")))
+        << name;
 
   // A few commands run in an empty folder write the same pictures, byte for byte: `make` + `faces`,
   // `make` + `boundary`, and `demo --only` for an example built in code.
   const auto again = dir() / "again";
   std::filesystem::create_directories(again);
-  for (const char* title : {"ball", "swept-patch-boundary", "ffd-bent-bar"}) {
+  std::filesystem::copy(out / "examples", again / "examples", std::filesystem::copy_options::recursive);
+  for (const char* title : {"ball", "bent-tricubic", "swept-patch-boundary", "ffd-bent-bar"}) {
     ASSERT_TRUE(entries.contains(title)) << title;
     const auto& [srcs, command] = entries[title];
     const std::string line = std::regex_replace(command, std::regex("(^|&& )volspline "), std::string("$1") + VOLSPLINE_CLI + " ");
     ASSERT_EQ(std::system(("cd " + again.string() + " && " + line + " >/dev/null").c_str()), 0) << line;
     for (const auto& picture : srcs) EXPECT_EQ(read_file(again / picture), read_file(out / picture)) << picture;
+    std::smatch page;
+    if (std::regex_search(line, page, std::regex("--html (\\S+)"))) {
+      EXPECT_TRUE(std::filesystem::exists(again / page[1].str())) << line;
+    }
   }
   // A `view` command, run in the demo folder where its models are, redraws its picture exactly.
   {
