@@ -68,12 +68,12 @@ std::vector<int> parse_integers(const std::string& text, std::size_t count, int 
 }
 
 void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, MeshFormat format, bool ascii,
-                            const std::string& png, const RenderOptions& options) {
+                            const std::string& png, const RenderOptions& options, const TriangleMesh* shown) {
   AtomicFile mesh_file(out);
   mesh_file.stream() << mesh_bytes(mesh, format, {.ascii = ascii});
   std::optional<AtomicFile> png_file;
   if (!png.empty()) {
-    const std::string bytes = png_bytes(render_mesh(mesh, options));
+    const std::string bytes = png_bytes(render_mesh(shown != nullptr ? *shown : mesh, options));
     png_file.emplace(png);
     png_file->stream() << bytes;
   }
@@ -83,7 +83,7 @@ void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, Me
 
 void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& out, MeshFormat format, const std::string& png,
                                   const RenderOptions& options, const std::string& stats_text, const std::string& stats_path,
-                                  Progress* progress) {
+                                  Progress* progress, const TriangleMesh* shown) {
   std::optional<AtomicFile> stats_file;
   if (!stats_path.empty()) {
     stats_file.emplace(stats_path, false);
@@ -91,7 +91,7 @@ void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& o
   }
   {
     const ProgressPhase phase(progress, "writing");
-    write_mesh_and_picture(mesh, out, format, false, png, options);
+    write_mesh_and_picture(mesh, out, format, false, png, options, shown);
     if (stats_file) stats_file->commit();
   }
   std::cout << "wrote " << out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles\n";
@@ -170,6 +170,13 @@ void remember_command_line(int argc, const char* const* argv) {
 }
 
 const std::string& remembered_command_line() { return command_line_storage(); }
+
+Eigen::Vector3d parse_view_direction(const std::string& text, const std::string& option) {
+  const auto d = parse_numbers(text, 3, option);
+  const Eigen::Vector3d direction(d[0], d[1], d[2]);
+  if (direction.norm() == 0.0) throw InvalidInput("the view direction must not be zero, got '" + text + "'", option);
+  return direction;
+}
 
 std::shared_ptr<std::string> add_html_option(CLI::App* cmd) {
   auto html = std::make_shared<std::string>();

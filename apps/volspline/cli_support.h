@@ -23,6 +23,9 @@ namespace volspline::cli {
 std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& option);
 /// Parses "A,B,C" into exactly `count` integers >= minimum. \throw InvalidInput naming `option`.
 std::vector<int> parse_integers(const std::string& text, std::size_t count, int minimum, const std::string& option);
+/// Parses "DX,DY,DZ", the direction a camera looks in. \throw InvalidInput naming `option` for
+/// anything but three finite numbers, or the zero vector.
+Eigen::Vector3d parse_view_direction(const std::string& text, const std::string& option);
 /// "u", "v", "w" (or "s" for the 4th) or "0".."3" to a direction index. \throw InvalidInput.
 int parse_direction(const std::string& text, const std::string& option);
 /// The model a subcommand reads: the positional MODEL (any format of io/model_formats.h, by
@@ -35,15 +38,16 @@ struct ModelInput {
 std::shared_ptr<ModelInput> add_model_input(CLI::App* cmd);
 /// Number of parameters of an object (1, 2 or 3).
 int parameter_count(const ModelObject& object);
-/// Writes `mesh` to `out` and, unless `png` is empty, its picture to `png`. Both files are
-/// prepared and opened before either is committed, so a failure on one leaves neither behind.
+/// Writes `mesh` to `out` and, unless `png` is empty, its picture (of `shown` where not null, e.g.
+/// the mesh cut open) to `png`. Both files are prepared and opened before either is committed, so
+/// a failure on one leaves neither behind.
 void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, MeshFormat format, bool ascii,
-                            const std::string& png, const RenderOptions& options);
+                            const std::string& png, const RenderOptions& options, const TriangleMesh* shown = nullptr);
 /// Writes `stats_text` to `stats_path` (unless empty), `mesh` and its picture as
 /// write_mesh_and_picture, all prepared before any is committed, and prints what it wrote.
 void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& out, MeshFormat format, const std::string& png,
                                   const RenderOptions& options, const std::string& stats_text, const std::string& stats_path,
-                                  Progress* progress);
+                                  Progress* progress, const TriangleMesh* shown = nullptr);
 /// JSON text for output (stdout, --stats): strings that are not valid UTF-8 (an object name read
 /// from an IRIT file) have their invalid bytes replaced by U+FFFD instead of failing.
 std::string json_text(const nlohmann::json& value, int indent = 2);

@@ -52,6 +52,6 @@ struct SimplexDemoInputs {
 /// The simplex-spline examples of `demo` (demo_simplex.cpp): Hua-He-Qin Figs. 1, 5 and 6.
 void write_simplex_demo(DemoRun& demo, const SimplexDemoInputs& inputs);
 /// Conkey–Joy Figs. 4-8: swept solids' envelopes, superset beside trimmed (demo_sweeps.cpp).
-void write_sweeps_demo(DemoRun& demo);
+void write_sweeps_demo(DemoRun& demo, const std::filesystem::path& examples);
 
 }  // namespace volspline::cli

@@ -20,6 +20,7 @@
 #include "volspline/io/model_file.h"
 #include "volspline/extract/face_tessellation.h"
 #include "volspline/mesh/mesh_checks.h"
+#include "volspline/mesh/mesh_reader.h"
 #include "volspline/mesh/mesh_writer.h"
 #include "volspline/pipeline/interactive_model_page.h"
 #include "volspline/render/image.h"
@@ -37,7 +38,8 @@ void add_demo_command(CLI::App& app) {
   cmd->add_option("--only", *only, "write only the examples with these names (index.html is then not written)");
   auto simplex_inputs = std::make_shared<SimplexDemoInputs>();
   cmd->add_option("--examples", simplex_inputs->examples,
-                  "the repository's examples folder, where Hua-He-Qin Figs. 5 and 6 find their surface and skeletons (default examples)");
+                  "the repository's examples folder, where Hua-He-Qin Figs. 5 and 6 find their surface and skeletons and Conkey-Joy Figs. 4-8 "
+                  "their swept solids (default examples)");
   cmd->add_option("--data", simplex_inputs->data,
                   "the shared data folder with volumes/bunny00.off for Hua-He-Qin Fig. 6 (default ../shared/data; skipped if absent)");
   cmd->callback([=] {
@@ -108,36 +110,48 @@ void add_demo_command(CLI::App& app) {
                 << "\n  " << demo.path(e.name + ".png") << "\n";
       demo.gallery().add({e.name, e.description, {e.name + ".png"}, command, page_file});
     }
-    // Free-form deformation (Lasser §III.2): a bar bent and twisted by a segmented lattice.
+    // Free-form deformation (Lasser §III.2): a bar bent and twisted by a segmented lattice. The
+    // lattice is a file of examples/ (the same bytes); the bar is made by `make box` and `faces`,
+    // and both go through their files here as they do in the gallery's commands.
     if (demo.wants("ffd-bent-bar")) {
+      const std::string lattice_file = "examples/ffd-bent-bar-lattice.json";
+      const std::string command = "volspline make box --size 4,1,1 -o bar.json && volspline faces bar.json -o bar.ply --resolution 40 && "
+                                  "volspline ffd " + lattice_file + " bar.ply -o ffd-bent-bar.ply --png ffd-bent-bar.png"
+                                  " --html ffd-bent-bar.html";
       TriangleMesh bent;
-      Model lattice;
+      Model lattice_model;
       {
         const ProgressPhase phase(demo.progress(), "ffd-bent-bar");
         const FfdExample ffd = bent_bar_ffd_example();
-        lattice = lattice_to_model(ffd.lattice);
-        write_model(lattice, demo.path("ffd-bent-bar-lattice.json"));
-        bent = deform_mesh(ffd.lattice, ffd.mesh);
+        create_output_directories(demo.dir() / "examples");
+        write_model(lattice_to_model(ffd.lattice), demo.path(lattice_file));
+        lattice_model = read_model(demo.path(lattice_file));
+        Model bar;
+        bar.objects.push_back({"", true, box(Eigen::Vector3d(4.0, 1.0, 1.0)), nullptr});
+        write_model(bar, demo.path("bar.json"));
+        write_mesh(tessellate_faces(std::get<BSplineVolume>(read_model(demo.path("bar.json")).objects.at(0).spline), {.resolution = 40}),
+                   demo.path("bar.ply"));
+        bent = deform_mesh(lattice_from_model(lattice_model, lattice_file), read_mesh(demo.path("bar.ply")));
         write_mesh(bent, demo.path("ffd-bent-bar.ply"));
         RenderOptions options;
         options.color = ColorMode::Single;
         write_png(render_mesh(bent, options), demo.path("ffd-bent-bar.png"));
       }
       const std::string description = "a 4 x 1 x 1 bar deformed by a degree (3, 2, 2) lattice with 3 cells (Lasser §III.2)";
-      std::cout << "ffd-bent-bar: " << description << "\n  " << demo.path("ffd-bent-bar-lattice.json") << "\n  "
-                << demo.path("ffd-bent-bar.ply") << "\n  " << demo.path("ffd-bent-bar.png") << "\n";
+      std::cout << "ffd-bent-bar: " << description << "\n  " << demo.path(lattice_file) << "\n  " << demo.path("ffd-bent-bar.ply")
+                << "\n  " << demo.path("ffd-bent-bar.png") << "\n";
       InteractivePage page;
       page.title = "ffd-bent-bar";
       page.mesh = bent;
-      page.info = {{"lattice", model_page_info(lattice, "ffd-bent-bar-lattice.json")}, {"description", description}};
-      const std::string page_file = demo.write_page("ffd-bent-bar.html", std::move(page), demo_only_command("ffd-bent-bar"));
-      demo.gallery().add({"ffd-bent-bar", description, {"ffd-bent-bar.png"}, demo_only_command("ffd-bent-bar"), page_file});
+      page.info = {{"lattice", model_page_info(lattice_model, lattice_file)}, {"description", description}};
+      const std::string page_file = demo.write_page("ffd-bent-bar.html", std::move(page), command);
+      demo.gallery().add({"ffd-bent-bar", description, {"ffd-bent-bar.png"}, command, page_file});
     }
     write_boundary_demo(demo);
     write_blend_demo(demo);  // Peters-Wittman blends, figures 1a-4c
     write_view_demo(demo);   // Lasser §IV: isoparametric surfaces, slices, cutaways, colouring
     write_simplex_demo(demo, *simplex_inputs);  // Hua-He-Qin Figs. 1, 5, 6
-    write_sweeps_demo(demo);                    // Conkey-Joy Figs. 4-8
+    write_sweeps_demo(demo, simplex_inputs->examples);  // Conkey-Joy Figs. 4-8
     demo.check_selection();
     if (!demo.selective()) {
       demo.gallery().write(*dir);

@@ -41,7 +41,6 @@ std::string url_escape(std::string_view name) {
   return out;
 }
 
-std::string demo_only_command(const std::string& name) { return "volspline demo --only " + name + " --out ."; }
 
 Gallery::Gallery(std::string heading) : heading_(std::move(heading)) {}
 

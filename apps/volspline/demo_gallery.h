@@ -16,8 +16,9 @@
 //   }
 //
 // The command must be a real command line of this program that, run in the output folder,
-// writes the pictures listed; where an example has no other command, use
-// demo_only_command(name) (`volspline demo --only NAME --out .`).
+// writes the pictures listed from the files there (the demo's examples/ holds the inputs): the
+// commands a user would type, never `volspline demo --only` (the gallery test runs some of them
+// and checks the pictures byte for byte).
 #include <filesystem>
 #include <set>
 #include <string>
@@ -66,8 +67,6 @@ class Gallery {
 std::string html_escape(std::string_view text);
 /// `name` as a relative URL: bytes other than letters, digits and -._~/ percent-encoded.
 std::string url_escape(std::string_view name);
-/// "volspline demo --only NAME --out .": reproduces one example of the demo in the current folder.
-std::string demo_only_command(const std::string& name);
 
 /// One run of `volspline demo`.
 class DemoRun {

@@ -38,8 +38,16 @@ namespace {
 void write_tetrahedron_demo(DemoRun& demo) {
   const std::string name = "simplex-tetrahedron-cubic";
   if (!demo.wants(name)) return;
-  const std::string command = demo_only_command(name) + " && volspline view " + name + ".json --cells 4 -o " + name + "-view.png";
-  std::string page_file;
+  // The model is built here and is a file of the repository's examples/ (the same bytes); the
+  // picture and the page are the `volspline view` command the gallery prints, run in the demo
+  // folder.
+  ViewArguments arguments;
+  arguments.model = "examples/" + name + ".json";
+  arguments.image = name + ".png";
+  arguments.cells = 4;
+  arguments.edges = true;
+  arguments.camera = "-1,-0.6,-0.5";
+  if (interactive_pages_available()) arguments.html = name + ".html";
   {
     const ProgressPhase phase(demo.progress(), name);
     const std::vector<Eigen::Vector3d> corners{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -56,23 +64,19 @@ void write_tetrahedron_demo(DemoRun& demo) {
     }
     Model model;
     model.objects.push_back({name, false, volume, nullptr});
-    write_model(model, demo.path(name + ".json"));
-    RenderOptions options;
-    options.view_direction = Eigen::Vector3d(-1.0, -0.6, -0.5);
-    options.edges = true;
-    options.smooth_normals = false;
-    const TriangleMesh cells = simplex_cell_mesh(volume, 4, 0.7);
-    write_png(render_mesh(cells, options), demo.path(name + ".png"));
-    InteractivePage page;
-    page.title = name;
-    page.mesh = cells;
-    page.info = model_page_info(model, name + ".json");
-    page_file = demo.write_page(name + ".html", std::move(page), command);
+    create_output_directories(demo.dir() / "examples");
+    write_model(model, demo.path(arguments.model));
+    ViewArguments run = arguments;
+    run.model = demo.path(run.model);
+    run.image = demo.path(run.image);
+    if (!run.html.empty()) run.html = demo.path(run.html);
+    std::ostringstream log;
+    run_view(run, log);
   }
   const std::string description = "Hua-He-Qin Fig. 1: a cubic DMS spline solid over one tetrahedron (20 control points, moved), "
                                   "as 64 shrunken cells";
-  std::cout << name << ": " << description << "\n  " << demo.path(name + ".json") << "\n  " << demo.path(name + ".png") << "\n";
-  demo.gallery().add({name, description, {name + ".png"}, command, page_file});
+  std::cout << name << ": " << description << "\n  " << demo.path(arguments.model) << "\n  " << demo.path(arguments.image) << "\n";
+  demo.gallery().add({name, description, {arguments.image}, view_command_line(arguments), arguments.html});
 }
 
 // A figure made from files: `volspline make simplex-spline --surface SURFACE --cell-size H

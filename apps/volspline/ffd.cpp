@@ -10,6 +10,7 @@
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/mesh_reader.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/pipeline/interactive_model_page.h"
 #include "volspline/pipeline/model_deformation.h"
 #include "volspline/render/image.h"
 #include "volspline/render/mesh_renderer.h"
@@ -32,8 +33,11 @@ void add_ffd_command(CLI::App& app) {
   cmd->add_flag("--ascii", *ascii, "write PLY or STL as text");
   cmd->add_flag("--edges", *edges, "draw the triangle edges in the picture");
   cmd->add_option("--size", *size, "picture size W,H in pixels (default 800,600)");
+  const auto html = add_html_option(cmd);
   cmd->callback([=] {
+    check_html_option(*html);
     if (std::filesystem::path(*in).extension() == ".json") {
+      if (!html->empty()) throw InvalidInput("--html is for a mesh input; a model output opens in `volspline view --html`", "--html");
       // Spline curves and surfaces: exact functional composition through the lattice.
       if (std::filesystem::path(*out).extension() != ".json")
         throw InvalidInput("a model input needs a .json output, got '" + *out + "'", "--output");
@@ -48,7 +52,8 @@ void add_ffd_command(CLI::App& app) {
       throw InvalidInput("expected a file name ending in .png, got '" + *png + "'", "--png");
     const auto wh = parse_integers(*size, 2, 16, "--size");
     if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + *size + "'", "--size");
-    const Lattice lattice = lattice_from_model(read_model(*lattice_path), *lattice_path);
+    const Model lattice_model = read_model(*lattice_path);
+    const Lattice lattice = lattice_from_model(lattice_model, *lattice_path);
     const TriangleMesh mesh = read_mesh(*in);
     const TriangleMesh deformed = deform_mesh(lattice, mesh);
     RenderOptions options;
@@ -57,6 +62,13 @@ void add_ffd_command(CLI::App& app) {
     options.edges = *edges;
     options.color = ColorMode::Single;
     write_mesh_and_picture(deformed, *out, format, *ascii, *png, options);
+    if (!html->empty()) {
+      InteractivePage page;
+      page.title = *in + " deformed by " + *lattice_path;
+      page.mesh = deformed;
+      page.info = {{"lattice", model_page_info(lattice_model, *lattice_path)}, {"input", *in}};
+      write_html_page(*html, std::move(page));
+    }
     std::cout << "wrote " << *out << ": " << deformed.num_vertices() << " vertices, " << deformed.num_triangles() << " triangles\n";
     if (!png->empty()) std::cout << "wrote " << *png << "\n";
   });

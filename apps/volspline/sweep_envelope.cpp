@@ -1,9 +1,10 @@
 // volspline sweep-envelope S.json -o OUT.(ply|obj|stl|glb) [--tol T] [--bounds bezier|cone]
-//   [--superset] [--stats S.json] [--png P.png]: the boundary of the volume a swept solid sweeps
+//   [--superset] [--stats S.json] [--png P.png] [--view DX,DY,DZ] [--cut-open NX,NY,NZ,D] [--html PAGE.html]: the boundary of the volume a swept solid sweeps
 //   (extract/swept_envelope.h, docs/envelopes.md).
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,7 @@
 #include "volspline/extract/swept_envelope.h"
 #include "volspline/io/atomic_file.h"
 #include "volspline/io/model_volumes.h"
+#include "volspline/mesh/mesh_clipping.h"
 #include "volspline/mesh/mesh_writer.h"
 #include "volspline/pipeline/interactive_model_page.h"
 
@@ -24,7 +26,7 @@ namespace {
 
 struct SweepEnvelopeArguments {
   std::shared_ptr<ModelInput> input;
-  std::string out, bounds = "bezier", trimming = "auto", stats, png, size = "800,600", html;
+  std::string out, bounds = "bezier", trimming = "auto", stats, png, size = "800,600", view, cut_open, html;
   double tol = 1e-3;
   std::int64_t max_cells = 2000000;
   bool superset = false;
@@ -88,6 +90,17 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   const auto wh = parse_integers(a.size, 2, 16, "--size");
   if (wh[0] > 8192 || wh[1] > 8192) throw InvalidInput("expected at most 8192 x 8192 pixels, got '" + a.size + "'", "--size");
   if (!(a.tol > 0 && a.tol < 0.5)) throw InvalidInput("expected a number in (0, 0.5)", "--tol");
+  RenderOptions render;
+  render.width = wh[0];
+  render.height = wh[1];
+  if (!a.view.empty()) render.view_direction = parse_view_direction(a.view, "--view");
+  std::optional<Plane> cut;
+  if (!a.cut_open.empty()) {
+    if (a.png.empty()) throw InvalidInput("--cut-open shapes the picture; give --png too", "--cut-open");
+    const auto p = parse_numbers(a.cut_open, 4, "--cut-open");
+    cut = Plane{Eigen::Vector3d(p[0], p[1], p[2]), p[3]};
+    if (cut->normal.norm() == 0.0) throw InvalidInput("expected a nonzero normal NX,NY,NZ, got '" + a.cut_open + "'", "--cut-open");
+  }
   SweptEnvelopeOptions options;
   options.tolerance = a.tol;
   options.max_cells = a.max_cells;
@@ -142,10 +155,10 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   }
   if (solids == 0)
     throw InvalidInput(a.input->path + " has no swept_solid object (make one with `volspline make swept-solid`)", "objects");
-  RenderOptions render;
-  render.width = wh[0];
-  render.height = wh[1];
-  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, stats.dump(2), a.stats, options.progress);
+  // A cut-open picture: the part where normal·x > offset is left out of the picture only
+  // (Conkey–Joy's superset shows its sheets inside the swept volume, the trimmed result is a shell).
+  const std::optional<TriangleMesh> shown = cut ? std::optional(remove_convex_region(mesh, {*cut})) : std::nullopt;
+  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, stats.dump(2), a.stats, options.progress, shown ? &*shown : nullptr);
   InteractivePage page;
   page.title = "envelope of " + a.input->path;
   page.mesh = mesh;
@@ -175,6 +188,9 @@ void add_sweep_envelope_command(CLI::App& app) {
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (parts coloured by source)");
   cmd->add_option("--size", a->size, "picture size W,H in pixels (default 800,600)");
+  cmd->add_option("--view", a->view, "DX,DY,DZ: the direction the camera of --png looks in (default -1,-1.3,-0.8)");
+  cmd->add_option("--cut-open", a->cut_open,
+                  "NX,NY,NZ,D: leave the part where NX x + NY y + NZ z > D out of the picture (the mesh file and page stay whole)");
   cmd->add_option("--html", a->html,
                   "also write an interactive page: the envelope in three.js with its parts, clipping and the model's "
                   "description, one self-contained file (docs/web-pages.md)");

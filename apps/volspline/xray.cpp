@@ -55,10 +55,7 @@ void add_xray_command(CLI::App& app) {
     options.width = size[0];
     options.height = size[1];
     options.attribute = r->attribute;
-    if (!r->view.empty()) {
-      const auto v = parse_numbers(r->view, 3, "--view");
-      options.view_direction = Eigen::Vector3d(v[0], v[1], v[2]);
-    }
+    if (!r->view.empty()) options.view_direction = parse_view_direction(r->view, "--view");
     if (!r->up.empty()) {
       const auto u = parse_numbers(r->up, 3, "--up");
       options.up = Eigen::Vector3d(u[0], u[1], u[2]);

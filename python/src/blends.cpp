@@ -4,13 +4,17 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
 #include "bindings.h"
 #include "volspline/boxspline/scene_file.h"
+#include "volspline/boxspline/scene_ingredients.h"
 #include "volspline/boxspline/zero_set.h"
 #include "volspline/core/error.h"
+#include "volspline/mesh/mesh_checks.h"
 
 namespace volspline::python {
 namespace {
@@ -35,9 +39,14 @@ Scene scene_from(const py::handle& scene) {
 void bind_blends(py::module_& m) {
   m.def(
       "blend",
-      [](const py::object& scene, int levels, const std::string& method, bool project, bool statistics,
-         const py::object& progress) {
+      [](const py::object& scene, int levels, const std::string& method, bool project, bool statistics, const std::string& show,
+         double spacing, const py::object& progress) {
         if (method != "control" && method != "exact") throw InvalidInput("method: expected control or exact, got '" + method + "'");
+        if (show != "blend" && show != "spline" && show != "union" && show != "primitives")
+          throw InvalidInput("show: expected blend, spline, union or primitives, got '" + show + "'");
+        const bool ingredients = show == "union" || show == "primitives";
+        if (spacing != 0.0 && !ingredients) throw InvalidInput("spacing: is for show='union' or 'primitives'");
+        if (spacing < 0.0 || !std::isfinite(spacing)) throw InvalidInput("spacing: expected a positive grid spacing, got " + std::to_string(spacing));
         if (project && method != "exact") throw InvalidInput("project: needs method='exact'");
         if (levels < 0 || levels > 8) throw InvalidInput("levels: expected 0 to 8, got " + std::to_string(levels));
         const Scene parsed = scene_from(scene);
@@ -48,6 +57,29 @@ void bind_blends(py::module_& m) {
         options.project = project;
         options.statistics = statistics;
         options.progress = listener.get();
+        if (ingredients) {
+          // The CSG ingredients, without the spline (boxspline/scene_ingredients.h).
+          const double h = spacing > 0.0 ? spacing : std::ldexp(parsed.spacing, -levels);
+          const auto start = std::chrono::steady_clock::now();
+          TriangleMesh mesh;
+          {
+            py::gil_scoped_release release;
+            mesh = scene_ingredients_mesh(parsed, show == "union" ? SceneIngredients::Union : SceneIngredients::Primitives, h);
+          }
+          const EdgeStatistics edges = edge_statistics(mesh);
+          py::dict stats;
+          stats["show"] = show;
+          stats["grid_spacing"] = h;
+          stats["vertices"] = mesh.num_vertices();
+          stats["triangles"] = mesh.num_triangles();
+          stats["closed"] = edges.closed();
+          stats["boundary_edges"] = edges.boundary_edges;
+          stats["nonmanifold_edges"] = edges.nonmanifold_edges;
+          stats["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          py::dict out = mesh_dict(mesh);
+          out["stats"] = stats;
+          return out;
+        }
         ZeroSet result;
         {
           py::gil_scoped_release release;
@@ -56,6 +88,7 @@ void bind_blends(py::module_& m) {
         listener.rethrow();
         const ZeroSetStats& s = result.stats;
         py::dict stats;
+        stats["show"] = show;
         stats["grid_spacing"] = s.grid_spacing;
         stats["vertices"] = s.vertices;
         stats["triangles"] = s.triangles;
@@ -66,18 +99,21 @@ void bind_blends(py::module_& m) {
         stats["boundary_edges"] = s.boundary_edges;
         stats["nonmanifold_edges"] = s.nonmanifold_edges;
         stats["seconds"] = s.seconds;
-        py::dict out = mesh_dict(result.mesh);
+        py::dict out = mesh_dict(show == "spline" ? triangles_of_part(result.mesh, Part::BlendSpline) : result.mesh);
         out["stats"] = stats;
         return out;
       },
       py::arg("scene"), py::arg("levels") = 2, py::arg("method") = "control", py::arg("project") = false,
-      py::arg("statistics") = true, py::arg("progress") = py::none(),
+      py::arg("statistics") = true, py::arg("show") = "blend", py::arg("spacing") = 0.0, py::arg("progress") = py::none(),
       R"(Blends implicit primitives with the 7-direction box spline (Peters-Wittman 1995) and meshes the zero
 set, as `volspline blend`. scene: a scene file's path, its JSON text, or a dict in the scene format
 (docs/scene-format.md). levels: lattice refinements before marching (0..8); method: 'control' (the
 paper's control polyhedron) or 'exact' (spline values; project=True moves vertices onto the zero
-set). Returns a mesh dict (part 11 the spline, 12 the primitives outside the box) with stats:
-vertices, triangles, max_abs_value, max_distance (one known primitive), closed, seconds, ...)");
+set). show: 'blend' (default), 'spline' (the box-spline part alone), 'union' (the pointwise minimum
+of the root's children) or 'primitives' (each child on its own), the last two marched on a grid of
+`spacing` (default the lattice spacing / 2**levels), as `volspline blend --show`. Returns a mesh
+dict (part 11 the spline, 12 the primitives outside the box) with stats: vertices, triangles,
+max_abs_value, max_distance (one known primitive), closed, seconds, ...)");
 }
 
 }  // namespace volspline::python

@@ -102,6 +102,42 @@ def test_blend_of_one_sphere_matches_the_cli_and_lies_on_the_sphere(tmp_path, cl
         volspline.blend({"volspline_scene": 1, "root": {"sphere": {"radius": -1}}})
 
 
+def test_blend_shows_the_ingredients_as_the_cli_does(tmp_path, cli):
+    """show='union' / 'primitives' / 'spline' give the meshes `volspline blend --show` writes."""
+    scene = {"volspline_scene": 1, "spacing": 0.2, "box": {"min": [-0.6, -0.6, -0.6], "max": [0.6, 0.6, 0.6]},
+             "domain": {"min": [-1.6, -1.2, -1.2], "max": [1.6, 1.2, 1.2]},
+             "root": {"blend": {"radius": 0.2, "of": [{"sphere": {"center": [-0.5, 0, 0], "radius": 0.8}},
+                                                            {"sphere": {"center": [0.5, 0, 0], "radius": 0.8}}]}}}
+    path = tmp_path / "spheres.json"
+    path.write_text(json.dumps(scene))
+    blend = volspline.blend(path)
+    for show in ("union", "primitives", "spline"):
+        mine = volspline.blend(path, show=show, spacing=0.05 if show != "spline" else 0.0)
+        args = ["--show", show] + (["--spacing", "0.05"] if show != "spline" else [])
+        code, _, err = cli("blend", path, "-o", tmp_path / f"{show}.ply", *args, "--stats", tmp_path / f"{show}.json")
+        assert code == 0, err
+        theirs = json.loads((tmp_path / f"{show}.json").read_text())
+        assert theirs["show"] == mine["stats"]["show"] == show
+        if show == "spline":
+            assert len(mine["triangles"]) == theirs["spline_triangles"] > 100
+        else:
+            assert len(mine["triangles"]) == theirs["triangles"] > 100
+            assert mine["stats"]["grid_spacing"] == theirs["grid_spacing"] == 0.05
+    spline = volspline.blend(path, show="spline")
+    assert set(np.unique(spline["parts"])) == {11}
+    assert len(spline["triangles"]) == int((blend["parts"] == 11).sum())
+    # On the surface of min(|x - a| - r, |x - b| - r) to the grid's accuracy.
+    union = volspline.blend(path, show="union", spacing=0.05)
+    x = union["vertices"]
+    f = np.minimum(np.linalg.norm(x - [-0.5, 0, 0], axis=1), np.linalg.norm(x - [0.5, 0, 0], axis=1)) - 0.8
+    assert abs(f).max() < 2e-3
+    assert union["stats"]["closed"]
+    with pytest.raises(volspline.InvalidInput, match="show"):
+        volspline.blend(path, show="everything")
+    with pytest.raises(volspline.InvalidInput, match="spacing"):
+        volspline.blend(path, spacing=0.1)
+
+
 def test_write_mesh_and_meshio_and_vtk_agree(tmp_path):
     meshio = pytest.importorskip("meshio")
     vtk = pytest.importorskip("vtk")

@@ -231,13 +231,16 @@ class Volume:
 def ball(radius: float, center: numpy.ndarray = ...) -> Volume:
     """The exact solid ball: a half disk revolved, degree (1, 2, 2); u = 1 is the sphere (make ball)."""
 
-def blend(scene: object, levels: int = ..., method: str = ..., project: bool = ..., statistics: bool = ..., progress: object = ...) -> dict:
+def blend(scene: object, levels: int = ..., method: str = ..., project: bool = ..., statistics: bool = ..., show: str = ..., spacing: float = ..., progress: object = ...) -> dict:
     """Blends implicit primitives with the 7-direction box spline (Peters-Wittman 1995) and meshes the zero
 set, as `volspline blend`. scene: a scene file's path, its JSON text, or a dict in the scene format
 (docs/scene-format.md). levels: lattice refinements before marching (0..8); method: 'control' (the
 paper's control polyhedron) or 'exact' (spline values; project=True moves vertices onto the zero
-set). Returns a mesh dict (part 11 the spline, 12 the primitives outside the box) with stats:
-vertices, triangles, max_abs_value, max_distance (one known primitive), closed, seconds, ..."""
+set). show: 'blend' (default), 'spline' (the box-spline part alone), 'union' (the pointwise minimum
+of the root's children) or 'primitives' (each child on its own), the last two marched on a grid of
+`spacing` (default the lattice spacing / 2**levels), as `volspline blend --show`. Returns a mesh
+dict (part 11 the spline, 12 the primitives outside the box) with stats: vertices, triangles,
+max_abs_value, max_distance (one known primitive), closed, seconds, ..."""
 
 def boundary(volume: Volume, tolerance: float = ..., max_cells: int = ..., face_resolution: int = ..., snap: bool = ..., bounds: str = ..., progress: object = ...) -> dict:
     """The boundary of the solid (Joy-Duchaineau): the six faces and the surface J = 0, as a dict of vertices (V, 3), parameters (u, v, w) (V, 3), triangles (F, 3), parts (F,), part_names and stats (volspline boundary). progress: None or a callable progress(phase, fraction)."""

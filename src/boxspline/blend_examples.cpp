@@ -1,5 +1,6 @@
 #include "volspline/boxspline/blend_examples.h"
 
+#include "volspline/boxspline/scene_ingredients.h"
 #include "volspline/boxspline/zero_set.h"
 #include "volspline/mesh/parts.h"
 
@@ -50,30 +51,6 @@ SceneNode capped_cylinder(const Eigen::Vector3d& centre, const Eigen::Vector3d& 
   const Eigen::Vector3d a = axis.normalized();
   return operation(SceneOperation::Intersection,
                    {cylinder(centre, a, radius), plane(centre + half_length * a, a), plane(centre - half_length * a, -a)});
-}
-
-TriangleMesh part_only(const TriangleMesh& mesh, Part part) {
-  TriangleMesh out;
-  std::vector<int> index(mesh.num_vertices(), -1);
-  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-    if (mesh.parts[t] != part_number(part)) continue;
-    std::array<int, 3> tri{};
-    for (int k = 0; k < 3; ++k) {
-      const int v = mesh.triangles[t][k];
-      if (index[static_cast<std::size_t>(v)] < 0)
-        index[static_cast<std::size_t>(v)] = out.add_vertex(mesh.positions[static_cast<std::size_t>(v)], mesh.parameters[static_cast<std::size_t>(v)]);
-      tri[k] = index[static_cast<std::size_t>(v)];
-    }
-    out.add_triangle(tri[0], tri[1], tri[2], part);
-  }
-  return out;
-}
-
-/// The primitives of a node's children meshed one by one (each closed where it is closed).
-TriangleMesh each_child(const SceneNode& node, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double spacing) {
-  TriangleMesh out;
-  for (const SceneNode& child : node.children) out.append(implicit_zero_set(child, lo, hi, spacing));
-  return out;
 }
 
 }  // namespace
@@ -138,6 +115,10 @@ Scene two_tori_scene() {
 }
 
 std::vector<BlendFigure> paper_blend_figures() {
+  // Each figure is what `volspline blend SCENE --show ...` draws from the scene files of
+  // examples/scenes (docs/blend.md "The figures of the paper"); the ingredients at spacing 0.05.
+  constexpr double kIngredientSpacing = 0.05;
+  const ZeroSetOptions blend{.levels = 2, .method = ZeroSetMethod::Control};
   std::vector<BlendFigure> figures;
   const Scene fig1 = cylinder_intersection_scene();
   for (int level = 0; level <= 2; ++level) {
@@ -147,24 +128,22 @@ std::vector<BlendFigure> paper_blend_figures() {
                        scene_zero_set(fig1, {.levels = level, .method = ZeroSetMethod::Control}).mesh});
   }
   const Scene fig2 = sphere_and_rod_scene();
-  const auto& [lo2, hi2] = *fig2.domain;
-  figures.push_back({"blend-fig2a", "Fig. 2a: two primitives, a sphere and a capped rod", each_child(fig2.root, lo2, hi2, 0.05)});
+  figures.push_back({"blend-fig2a", "Fig. 2a: two primitives, a sphere and a capped rod",
+                     scene_ingredients_mesh(fig2, SceneIngredients::Primitives, kIngredientSpacing)});
   figures.push_back({"blend-fig2b", "Fig. 2b: their union (pointwise minimum: a crease)",
-                     implicit_zero_set(operation(SceneOperation::Union, fig2.root.children), lo2, hi2, 0.05)});
-  figures.push_back({"blend-fig2c", "Fig. 2c: their smooth blend; the box-spline surface is highlighted",
-                     scene_zero_set(fig2, {.levels = 2, .method = ZeroSetMethod::Control}).mesh});
+                     scene_ingredients_mesh(fig2, SceneIngredients::Union, kIngredientSpacing)});
+  figures.push_back({"blend-fig2c", "Fig. 2c: their smooth blend; the box-spline surface is highlighted", scene_zero_set(fig2, blend).mesh});
   const Scene fig3 = various_primitives_scene();
   figures.push_back({"blend-fig3a", "Fig. 3a: an ellipsoid, a torus, a capped rod and a capped cone",
-                     each_child(fig3.root, fig3.box_min, fig3.box_max, 0.05)});
+                     scene_ingredients_mesh(fig3, SceneIngredients::Primitives, kIngredientSpacing)});
   figures.push_back({"blend-fig3b", "Fig. 3b: their union (pointwise minimum)",
-                     implicit_zero_set(operation(SceneOperation::Union, fig3.root.children), fig3.box_min, fig3.box_max, 0.05)});
-  figures.push_back({"blend-fig3c", "Fig. 3c: the primitives blended by the box spline",
-                     scene_zero_set(fig3, {.levels = 2, .method = ZeroSetMethod::Control}).mesh});
+                     scene_ingredients_mesh(fig3, SceneIngredients::Union, kIngredientSpacing)});
+  figures.push_back({"blend-fig3c", "Fig. 3c: the primitives blended by the box spline", scene_zero_set(fig3, blend).mesh});
   const Scene fig4 = two_tori_scene();
-  const auto& [lo4, hi4] = *fig4.domain;
-  figures.push_back({"blend-fig4a", "Fig. 4a: the torus primitive", implicit_zero_set(fig4.root.children[0], lo4, hi4, 0.05)});
-  const TriangleMesh joined = scene_zero_set(fig4, {.levels = 2, .method = ZeroSetMethod::Control}).mesh;
-  figures.push_back({"blend-fig4b", "Fig. 4b: the box-spline part of the join of two tori", part_only(joined, Part::BlendSpline)});
+  figures.push_back({"blend-fig4a", "Fig. 4a: the two torus primitives, each on its own",
+                     scene_ingredients_mesh(fig4, SceneIngredients::Primitives, kIngredientSpacing)});
+  const TriangleMesh joined = scene_zero_set(fig4, blend).mesh;
+  figures.push_back({"blend-fig4b", "Fig. 4b: the box-spline part of the join of two tori", triangles_of_part(joined, Part::BlendSpline)});
   figures.push_back({"blend-fig4c", "Fig. 4c: the complete joined object (box spline highlighted, tori outside)", joined});
   return figures;
 }

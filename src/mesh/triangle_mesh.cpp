@@ -21,6 +21,22 @@ void TriangleMesh::append(const TriangleMesh& other) {
   parts.insert(parts.end(), other.parts.begin(), other.parts.end());
 }
 
+TriangleMesh triangles_of_part(const TriangleMesh& mesh, int part) {
+  TriangleMesh out;
+  std::vector<int> index(mesh.num_vertices(), -1);
+  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+    if (mesh.parts[t] != part) continue;
+    std::array<int, 3> corners{};
+    for (int k = 0; k < 3; ++k) {
+      const auto v = static_cast<std::size_t>(mesh.triangles[t][static_cast<std::size_t>(k)]);
+      if (index[v] < 0) index[v] = out.add_vertex(mesh.positions[v], mesh.parameters[v]);
+      corners[static_cast<std::size_t>(k)] = index[v];
+    }
+    out.add_triangle(corners[0], corners[1], corners[2], part);
+  }
+  return out;
+}
+
 std::pair<Eigen::Vector3d, Eigen::Vector3d> TriangleMesh::bounding_box() const {
   if (positions.empty()) return {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   Eigen::Vector3d lo = positions.front(), hi = positions.front();

@@ -8,7 +8,9 @@
 #include <numeric>
 
 #include "support/test_meshes.h"
+#include "volspline/boxspline/scene_file.h"
 #include "volspline/boxspline/zero_set.h"
+#include "volspline/io/atomic_file.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
@@ -43,6 +45,21 @@ TEST(BlendExamples, Fig3TunnelsBelongToTheZeroSet) {
   EXPECT_EQ(components_and_euler(scene_zero_set(scene, {.levels = 1, .method = ZeroSetMethod::Control, .statistics = false}).mesh), genus4);
   EXPECT_EQ(components_and_euler(scene_zero_set(scene, {.levels = 1, .method = ZeroSetMethod::Exact, .statistics = false}).mesh), genus4);
   EXPECT_EQ(components_and_euler(implicit_zero_set(scene.root, scene.box_min, scene.box_max, 0.05)), genus4);
+}
+
+// The scene files from which `volspline blend` makes the figures in the demo's gallery
+// (examples/scenes/peters-wittman-fig*.json) are the scenes built here, written by scene_to_json,
+// and read back as the same scenes.
+TEST(BlendExamples, TheFigureSceneFilesAreTheScenes) {
+  const std::pair<const char*, Scene> scenes[] = {{"peters-wittman-fig1", cylinder_intersection_scene()},
+                                                  {"peters-wittman-fig2", sphere_and_rod_scene()},
+                                                  {"peters-wittman-fig3", various_primitives_scene()},
+                                                  {"peters-wittman-fig4", two_tori_scene()}};
+  for (const auto& [name, scene] : scenes) {
+    const std::filesystem::path file = std::string(VOLSPLINE_SOURCE_DIR) + "/examples/scenes/" + name + ".json";
+    EXPECT_EQ(read_file(file), scene_to_json(scene)) << name;
+    EXPECT_EQ(scene_to_json(read_scene(file)), scene_to_json(scene)) << name;
+  }
 }
 
 }  // namespace

@@ -40,6 +40,56 @@ TEST(BlendCli, WritesMeshPictureAndStatistics) {
   EXPECT_TRUE(std::filesystem::file_size(dir / "s.png") > 1000);
 }
 
+// --show: the ingredients (union, primitives) are closed and bound what they should relative to
+// the blend; the spline part is the blend's BlendSpline triangles alone; --view turns the camera.
+TEST(BlendCli, ShowsTheIngredientsTheUnionAndTheSplinePart) {
+  test_support::TemporaryDirectory dir;
+  const std::string scene = std::string(VOLSPLINE_SOURCE_DIR) + "/examples/scenes/scene-sphere-rod-blend.json";
+  const auto mesh_of = [&](const std::string& arguments, const std::string& name) {
+    const auto r = test_support::run_cli("blend " + scene + " " + arguments + " -o " + (dir / (name + ".ply")).string() + " --stats " +
+                                             (dir / (name + ".json")).string(),
+                                         dir.path());
+    EXPECT_EQ(r.code, 0) << r.err;
+    const nlohmann::json stats = nlohmann::json::parse(read_file(dir / (name + ".json")));
+    EXPECT_EQ(stats["show"], arguments.empty() ? "blend" : arguments.substr(7, arguments.find(' ', 7) - 7)) << arguments;
+    return read_mesh(dir / (name + ".ply"));
+  };
+  const TriangleMesh blend = mesh_of("", "blend");
+  const TriangleMesh spline = mesh_of("--show spline", "spline");
+  const TriangleMesh united = mesh_of("--show union --spacing 0.05", "union");
+  const TriangleMesh primitives = mesh_of("--show primitives --spacing 0.05", "primitives");
+  EXPECT_TRUE(edge_statistics(united).closed_and_oriented());
+  EXPECT_TRUE(edge_statistics(primitives).closed_and_oriented());
+  // The sphere and the rod overlap: meshed apart they bound more than their union, and the blend
+  // fills the crease of the union (it bounds more than the union).
+  EXPECT_GT(enclosed_volume(primitives), enclosed_volume(united) + 0.05);
+  EXPECT_GT(enclosed_volume(blend), enclosed_volume(united));
+  std::size_t spline_triangles = 0;
+  for (const int part : blend.parts) spline_triangles += part == part_number(Part::BlendSpline) ? 1 : 0;
+  EXPECT_EQ(spline.num_triangles(), spline_triangles);
+  EXPECT_GT(spline.num_triangles(), 100u);
+  for (const int part : spline.parts) EXPECT_EQ(part, part_number(Part::BlendSpline));
+
+  // --view changes the picture; a zero direction, or --spacing without an ingredient, is refused
+  // before anything is written.
+  const auto picture = [&](const std::string& view, const std::string& name) {
+    const auto r = test_support::run_cli("blend " + scene + " --levels 0 -o " + (dir / "p.ply").string() + " --png " +
+                                             (dir / name).string() + view,
+                                         dir.path());
+    EXPECT_EQ(r.code, 0) << r.err;
+    return read_file(dir / name);
+  };
+  EXPECT_NE(picture("", "a.png"), picture(" --view 0,-1,-0.2", "b.png"));
+  EXPECT_EQ(picture("", "a.png"), picture(" --view -1,-1.3,-0.8", "c.png"));  // the default
+  for (const auto& [arguments, option] : {std::pair{"--view 0,0,0", "--view"}, std::pair{"--view 1,2", "--view"},
+                                          std::pair{"--spacing 0.1", "--spacing"}, std::pair{"--show union --spacing -1", "--spacing"}}) {
+    const auto r = test_support::run_cli("blend " + scene + " " + arguments + " -o " + (dir / "bad.ply").string(), dir.path());
+    EXPECT_EQ(r.code, 2) << arguments;
+    EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.ply"));
+  }
+}
+
 TEST(BlendCli, WritesBinaryGltfWithTheTrianglesOfThePly) {
   // The same scene written as .ply and as .glb: tinygltf's own loader reads the .glb back, and
   // its index count is three per triangle of the .ply; positions agree as floats.

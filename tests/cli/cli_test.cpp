@@ -276,7 +276,7 @@ TEST_F(Cli, DemoWritesEveryExampleAndItsGallery) {
                            "frustum", "half-torus", "hyperboloid", "half-cylinder-sweep", "swept-patch", "twisted-loft",
                            "curved-loft"})
     for (const char* ext : {".json", ".ply", ".png"}) EXPECT_TRUE(std::filesystem::exists(out / (std::string(name) + ext))) << name << ext;
-  for (const char* file : {"ffd-bent-bar-lattice.json", "ffd-bent-bar.ply", "ffd-bent-bar.png"})
+  for (const char* file : {"examples/ffd-bent-bar-lattice.json", "ffd-bent-bar.ply", "ffd-bent-bar.png"})
     EXPECT_TRUE(std::filesystem::exists(out / file)) << file;
   for (const char* file : {"simplex-torus-sm.json", "simplex-torus-sm-xray.png", "simplex-torus-sm-iso.png", "examples/torus-surface.off"})
     EXPECT_TRUE(std::filesystem::exists(out / file)) << file;
@@ -317,7 +317,11 @@ TEST_F(Cli, DemoWritesEveryExampleAndItsGallery) {
   for (const auto& [title, entry] : entries) shown += entry.first.size();
   EXPECT_EQ(shown, pictures.size());
   EXPECT_LE(entries.size(), pictures.size());
-  for (const auto& [title, entry] : entries) EXPECT_EQ(entry.second.rfind("volspline ", 0), 0u) << title << ": " << entry.second;
+  // Every entry shows the commands that make it from files (not `demo --only`).
+  for (const auto& [title, entry] : entries) {
+    EXPECT_EQ(entry.second.rfind("volspline ", 0), 0u) << title << ": " << entry.second;
+    EXPECT_EQ(entry.second.find("volspline demo"), std::string::npos) << title << ": " << entry.second;
+  }
   // Every page the gallery links exists, and the thumbnails of an entry with a page open it.
   const std::regex page_link("<a href=\"([^\"]+\\.html)\">");
   std::size_t pages = 0;
@@ -327,17 +331,20 @@ TEST_F(Cli, DemoWritesEveryExampleAndItsGallery) {
     EXPECT_GE(pages, 30u);
   }
   // The solids built in code that no `make` kind builds are files of examples/: the same bytes.
-  for (const char* name : {"bent-tricubic", "twisted", "half-cylinder-shell"})
+  for (const char* name : {"bent-tricubic", "twisted", "half-cylinder-shell", "ffd-bent-bar-lattice", "simplex-tetrahedron-cubic",
+                           "scenes/peters-wittman-fig1", "scenes/peters-wittman-fig2", "scenes/peters-wittman-fig3",
+                           "scenes/peters-wittman-fig4"})
     EXPECT_EQ(read_file(out / "examples" / (std::string(name) + ".json")),
               read_file(std::filesystem::path(VOLSPLINE_SOURCE_DIR) / "examples" / (std::string(name) + ".json")))
         << name;
 
-  // A few commands run in an empty folder write the same pictures, byte for byte: `make` + `faces`,
-  // `make` + `boundary`, and `demo --only` for an example built in code.
+  // A few commands run in an empty folder holding the demo's examples/ write the same pictures,
+  // byte for byte: `make` + `faces`, `make` + `boundary`, `make` + `faces` + `ffd`, `blend` with
+  // --show, and the two `sweep-envelope` runs (superset and trimmed) of a swept solid.
   const auto again = dir() / "again";
   std::filesystem::create_directories(again);
   std::filesystem::copy(out / "examples", again / "examples", std::filesystem::copy_options::recursive);
-  for (const char* title : {"ball", "bent-tricubic", "swept-patch-boundary", "ffd-bent-bar"}) {
+  for (const char* title : {"ball", "bent-tricubic", "swept-patch-boundary", "ffd-bent-bar", "blend-fig2a", "blend-fig4b", "sweep-fig5"}) {
     ASSERT_TRUE(entries.contains(title)) << title;
     const auto& [srcs, command] = entries[title];
     const std::string line = std::regex_replace(command, std::regex("(^|&& )volspline "), std::string("$1") + VOLSPLINE_CLI + " ");

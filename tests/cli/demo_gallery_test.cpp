@@ -18,7 +18,7 @@ TEST(Gallery, EscapesTextAndLinksPicturesRelatively) {
   EXPECT_EQ(url_escape("sub/ball-1_x~.png"), "sub/ball-1_x~.png");
   Gallery g("demo <1>");
   g.add({"ball", "radius < 2 & exact", {"ball.png", "ball top.png"}, "volspline make ball --radius 1 -o b.json && echo '<x>'"});
-  g.add({"other", "", {"other.png"}, demo_only_command("other"), "other page.html"});
+  g.add({"other", "", {"other.png"}, "volspline view other.json -o other.png", "other page.html"});
   const std::string html = g.html();
   EXPECT_NE(html.find("<title>demo &lt;1&gt;</title>"), std::string::npos);
   EXPECT_NE(html.find("<p>radius &lt; 2 &amp; exact</p>"), std::string::npos);
@@ -28,7 +28,7 @@ TEST(Gallery, EscapesTextAndLinksPicturesRelatively) {
   EXPECT_NE(html.find("<a href=\"ball.png\"><img src=\"ball.png\""), std::string::npos);
   EXPECT_NE(html.find("<a href=\"other%20page.html\"><img src=\"other.png\""), std::string::npos);
   EXPECT_NE(html.find("<code>volspline make ball --radius 1 -o b.json &amp;&amp; echo &#39;&lt;x&gt;&#39;</code>"), std::string::npos);
-  EXPECT_NE(html.find("<code>volspline demo --only other --out .</code>"), std::string::npos);
+  EXPECT_NE(html.find("<code>volspline view other.json -o other.png</code>"), std::string::npos);
   // Nothing unescaped slipped through: every '<' opens one of the page's own tags.
   const std::regex tag("<(/?)([a-zA-Z0-9!]+)");
   for (std::sregex_iterator it(html.begin(), html.end(), tag), end; it != end; ++it)

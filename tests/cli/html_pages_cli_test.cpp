@@ -1,4 +1,4 @@
-// `--html` on faces, boundary, view, blend and sweep-envelope: the page carries the triangles the
+// `--html` on faces, boundary, view, blend, sweep-envelope and ffd: the page carries the triangles the
 // mesh file has, part by part, the model's description, the probes where there are volumes and
 // the colour bar where the command colours by a field; a bad name or a build without the viewer
 // exits 2 with nothing written.
@@ -98,6 +98,21 @@ TEST_F(HtmlPagesCli, FacesBoundaryViewBlendAndEnvelopeWriteTheirPages) {
   data = page_data("e.html");
   EXPECT_EQ(page_triangles(data), mesh_triangles(read_mesh(path("e.ply"))));
   EXPECT_TRUE(data["info"]["envelope"]["objects"][0]["closed"].get<bool>());
+
+  // ffd: the deformed mesh, with the lattice's description.
+  r = test_support::run_cli("lattice " + path("f.ply") + " -o " + path("l.json") + " --degree 2,2,2", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = test_support::run_cli("ffd " + path("l.json") + " " + path("f.ply") + " -o " + path("d.ply") + " --html " + path("d.html"), tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  data = page_data("d.html");
+  EXPECT_EQ(page_triangles(data), mesh_triangles(read_mesh(path("d.ply"))));
+  EXPECT_TRUE(data["info"]["lattice"].contains("objects"));
+  // A model input gives a model, which has no page of its own here.
+  r = test_support::run_cli("ffd " + path("l.json") + " " + example("bent-tricubic.json") + " -o " + path("m.json") + " --html " + path("m.html"),
+                            tmp.path());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--html"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(path("m.json")));
 }
 
 TEST_F(HtmlPagesCli, ABadNameOrNoViewerExitsTwoWithNothingWritten) {

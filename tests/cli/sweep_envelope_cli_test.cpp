@@ -45,11 +45,34 @@ TEST_F(SweepEnvelopeCli, TrimmedTranslatedBoxIsItsClosedHull) {
   EXPECT_GT(read_mesh(path("superset.ply")).num_triangles(), mesh.num_triangles());
 }
 
+TEST_F(SweepEnvelopeCli, ViewTurnsTheCameraOfThePicture) {
+  const auto picture = [&](const std::string& view, const std::string& name) {
+    const auto r = test_support::run_cli("sweep-envelope " + example("swept-translated-box.json") + " -o " + path("e.ply") +
+                                             " --size 160,120 --png " + path(name) + view,
+                                         tmp.path());
+    EXPECT_EQ(r.code, 0) << r.err;
+    std::ifstream in(path(name), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(picture("", "a.png"), picture(" --view -1,-1.3,-0.8", "b.png"));  // the default
+  EXPECT_NE(picture("", "a.png"), picture(" --view 0,-1,-0.3", "c.png"));
+  // --cut-open changes the picture and nothing else: the mesh file is the whole envelope.
+  const std::string whole = picture("", "a.png");
+  std::ifstream whole_mesh(path("e.ply"), std::ios::binary);
+  const std::string mesh_bytes(std::istreambuf_iterator<char>(whole_mesh), {});
+  EXPECT_NE(picture(" --cut-open 1,0,0,1.5", "d.png"), whole);
+  std::ifstream cut_mesh(path("e.ply"), std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(cut_mesh), {}), mesh_bytes);
+}
+
 TEST_F(SweepEnvelopeCli, BadInputExitsTwoAndWritesNothing) {
   // A model without a swept solid, a bad option value, an unknown bounds method.
   for (const std::string& args : {example("swept-patch.json") + " -o " + path("a.ply"),
                                  example("swept-translated-box.json") + " -o " + path("a.ply") + " --tol 0",
-                                 example("swept-translated-box.json") + " -o " + path("a.ply") + " --bounds box"}) {
+                                 example("swept-translated-box.json") + " -o " + path("a.ply") + " --bounds box",
+                                 example("swept-translated-box.json") + " -o " + path("a.ply") + " --png " + path("a.png") + " --view 0,0,0",
+                                 example("swept-translated-box.json") + " -o " + path("a.ply") + " --png " + path("a.png") + " --cut-open 0,0,0,1",
+                                 example("swept-translated-box.json") + " -o " + path("a.ply") + " --cut-open 1,0,0,1"}) {
     const auto r = test_support::run_cli("sweep-envelope " + args, tmp.path());
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_FALSE(std::filesystem::exists(path("a.ply"))) << args;

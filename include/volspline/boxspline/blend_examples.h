@@ -5,7 +5,7 @@
 //       spline part highlighted (Part::BlendSpline) and the primitives outside the box
 //       (Part::BlendPrimitive, mesh/parts.h);
 //  3a-c various primitives blended: the primitives, their union, the blend;
-//  4a-c the join of two tori: the torus primitive, the box-spline part of the join, the whole
+//  4a-c the join of two tori: the two torus primitives, the box-spline part of the join, the whole
 //       joined object.
 #include <string>
 #include <vector>

@@ -36,4 +36,9 @@ struct TriangleMesh {
   std::pair<Eigen::Vector3d, Eigen::Vector3d> bounding_box() const;
 };
 
+/// The triangles of part number `part` with the vertices they use (in their first order), e.g.
+/// the box-spline surface of a blend alone (Peters & Wittman Fig. 4b).
+TriangleMesh triangles_of_part(const TriangleMesh& mesh, int part);
+inline TriangleMesh triangles_of_part(const TriangleMesh& mesh, Part part) { return triangles_of_part(mesh, part_number(part)); }
+
 }  // namespace volspline
