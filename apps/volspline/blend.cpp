@@ -79,7 +79,7 @@ void add_blend_command(CLI::App& app) {
     if (ingredients) {
       // The ingredients have no spline: the CSG function itself is marched (docs/blend.md).
       const auto start = std::chrono::steady_clock::now();
-      const double h = *spacing > 0.0 ? *spacing : std::ldexp(scene.spacing, -*levels);
+      const double h = *spacing > 0.0 ? *spacing : default_ingredient_spacing(scene, *levels);
       {
         const ProgressPhase phase(options.progress, "marching");
         mesh = scene_ingredients_mesh(scene, *show == "union" ? SceneIngredients::Union : SceneIngredients::Primitives, h);

@@ -178,6 +178,13 @@ Eigen::Vector3d parse_view_direction(const std::string& text, const std::string&
   return direction;
 }
 
+Plane parse_plane(const std::string& text, const std::string& option) {
+  const auto p = parse_numbers(text, 4, option);
+  const Plane plane{Eigen::Vector3d(p[0], p[1], p[2]), p[3]};
+  if (plane.normal.norm() == 0.0) throw InvalidInput("the plane normal NX,NY,NZ must not be zero, got '" + text + "'", option);
+  return plane;
+}
+
 std::shared_ptr<std::string> add_html_option(CLI::App* cmd) {
   auto html = std::make_shared<std::string>();
   cmd->add_option("--html", *html,

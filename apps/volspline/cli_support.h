@@ -10,6 +10,7 @@
 #include "volspline/core/progress.h"
 #include "volspline/io/model_file.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/mesh/plane.h"
 #include "volspline/render/mesh_renderer.h"
 #include "volspline/web/interactive_page.h"
 
@@ -26,6 +27,9 @@ std::vector<int> parse_integers(const std::string& text, std::size_t count, int 
 /// Parses "DX,DY,DZ", the direction a camera looks in. \throw InvalidInput naming `option` for
 /// anything but three finite numbers, or the zero vector.
 Eigen::Vector3d parse_view_direction(const std::string& text, const std::string& option);
+/// Parses "NX,NY,NZ,D", the plane NX x + NY y + NZ z = D (normal as given, not normalised).
+/// \throw InvalidInput naming `option` for anything but four finite numbers, or a zero normal.
+Plane parse_plane(const std::string& text, const std::string& option);
 /// "u", "v", "w" (or "s" for the 4th) or "0".."3" to a direction index. \throw InvalidInput.
 int parse_direction(const std::string& text, const std::string& option);
 /// The model a subcommand reads: the positional MODEL (any format of io/model_formats.h, by

@@ -71,10 +71,8 @@ void write_sweep_example(DemoRun& demo, const SweepDemoExample& example, const s
     const auto patches = swept_patches(std::get<SweptSolid>(model.objects.at(0).spline));
     SweptEnvelopeOptions options;
     options.tolerance = kSweepDemoTolerance;
-    options.trim = false;
-    const SweptEnvelope superset = swept_envelope(patches, options);
-    options.trim = true;
-    const SweptEnvelope trimmed = swept_envelope(patches, options);
+    const SweptEnvelope superset = swept_envelope_superset(patches, options);
+    const SweptEnvelope trimmed = trim_swept_envelope(patches, superset, options);
     volume = trimmed.stats.trimming.volume;
     closed = trimmed.stats.trimming.closed && trimmed.stats.trimming.oriented && trimmed.stats.trimming.self_intersection_free;
     RenderOptions render;
@@ -88,8 +86,7 @@ void write_sweep_example(DemoRun& demo, const SweepDemoExample& example, const s
     if (example.name == "sweep-fig4") {
       RenderOptions open = render;
       open.view_direction = parse_view_direction(kSweepDemoCutView, "view");
-      const auto p = parse_numbers(kSweepDemoCut, 4, "cut");
-      const std::vector<Plane> cut{Plane{Eigen::Vector3d(p[0], p[1], p[2]), p[3]}};
+      const std::vector<Plane> cut{parse_plane(kSweepDemoCut, "cut")};
       write_png(render_mesh(remove_convex_region(superset.mesh, cut), open), demo.path("sweep-fig4-cut-open-superset.png"));
       write_png(render_mesh(remove_convex_region(trimmed.mesh, cut), open), demo.path("sweep-fig4-cut-open.png"));
     }

@@ -97,9 +97,7 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   std::optional<Plane> cut;
   if (!a.cut_open.empty()) {
     if (a.png.empty()) throw InvalidInput("--cut-open shapes the picture; give --png too", "--cut-open");
-    const auto p = parse_numbers(a.cut_open, 4, "--cut-open");
-    cut = Plane{Eigen::Vector3d(p[0], p[1], p[2]), p[3]};
-    if (cut->normal.norm() == 0.0) throw InvalidInput("expected a nonzero normal NX,NY,NZ, got '" + a.cut_open + "'", "--cut-open");
+    cut = parse_plane(a.cut_open, "--cut-open");
   }
   SweptEnvelopeOptions options;
   options.tolerance = a.tol;

@@ -65,9 +65,7 @@ SolidViewRequest request_from(const ViewArguments& a) {
     request.series.push_back({axis, count});
   }
   for (const auto& s : a.planes) {
-    const auto p = parse_numbers(s, 4, "--plane");
-    if (Eigen::Vector3d(p[0], p[1], p[2]).norm() == 0) throw InvalidInput("the plane normal NX,NY,NZ must not be zero, got '" + s + "'", "--plane");
-    request.planes.push_back({Eigen::Vector3d(p[0], p[1], p[2]), p[3]});
+    request.planes.push_back(parse_plane(s, "--plane"));
   }
   if (!a.core.empty()) request.core = vector3(parse_numbers(a.core, 3, "--core"));
   for (const auto& s : a.paddlewheels) {
@@ -192,8 +190,7 @@ void run_simplex_view(const ViewArguments& a, const Model& model, const DmsSplin
     }
   }
   for (const auto& text : a.planes) {
-    const auto p = parse_numbers(text, 4, "--plane");
-    planes.push_back(Plane{Eigen::Vector3d(p[0], p[1], p[2]), p[3]});
+    planes.push_back(parse_plane(text, "--plane"));
   }
   SimplexSliceOptions slice_options;
   slice_options.attribute = color;

@@ -59,7 +59,7 @@ void bind_blends(py::module_& m) {
         options.progress = listener.get();
         if (ingredients) {
           // The CSG ingredients, without the spline (boxspline/scene_ingredients.h).
-          const double h = spacing > 0.0 ? spacing : std::ldexp(parsed.spacing, -levels);
+          const double h = spacing > 0.0 ? spacing : default_ingredient_spacing(parsed, levels);
           const auto start = std::chrono::steady_clock::now();
           TriangleMesh mesh;
           {

@@ -1,8 +1,12 @@
 #include "volspline/boxspline/scene_ingredients.h"
 
+#include <cmath>
+
 #include "volspline/boxspline/zero_set.h"
 
 namespace volspline {
+
+double default_ingredient_spacing(const Scene& scene, int levels) { return std::ldexp(scene.spacing, -levels); }
 
 TriangleMesh scene_ingredients_mesh(const Scene& scene, SceneIngredients what, double spacing) {
   Eigen::Vector3d lo = scene.box_min, hi = scene.box_max;

@@ -259,6 +259,11 @@ void check_patches(const std::vector<BSplineHypervolume>& patches, const SweptEn
   if (options.max_cells < 1) throw InvalidInput("expected a positive budget of cells", "max_cells");
 }
 
+void check_trimming_options(const SweptEnvelopeOptions& options) {
+  if (!(options.contour_cell_factor > 0 && options.contour_cell_factor * options.tolerance < 0.5))
+    throw InvalidInput("expected 0 < contour_cell_factor * tolerance < 0.5", "contour_cell_factor");
+}
+
 }  // namespace
 
 SweptEnvelope swept_envelope_superset(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {
@@ -288,10 +293,15 @@ Eigen::Vector3d swept_envelope_point(const std::vector<BSplineHypervolume>& patc
 }
 
 SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {
-  if (!(options.contour_cell_factor > 0 && options.contour_cell_factor * options.tolerance < 0.5))
-    throw InvalidInput("expected 0 < contour_cell_factor * tolerance < 0.5", "contour_cell_factor");
+  check_trimming_options(options);
   SweptEnvelope superset = swept_envelope_superset(patches, options);
   if (!options.trim) return superset;
+  return trim_swept_envelope(patches, superset, options);
+}
+
+SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& superset,
+                                  const SweptEnvelopeOptions& options) {
+  check_trimming_options(options);
   const auto start = Clock::now();
   const SplineImage<4> image(patches);
   const ImageMembershipTest inside = [&](const Eigen::Vector3d& x) -> std::optional<bool> {

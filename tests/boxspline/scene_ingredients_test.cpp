@@ -65,6 +65,9 @@ TEST(SceneIngredients, TheUnionBoundsTheSpheresLessTheirLens) {
   // The blend of the same scene is smooth where the union is creased: it bounds more.
   const ZeroSet blend = scene_zero_set(two_spheres(d), {.levels = 2, .statistics = false});
   EXPECT_GT(enclosed_volume(blend.mesh), enclosed_volume(mesh));
+  // Drawn without a spacing of their own, the ingredients use the blend's grid.
+  EXPECT_EQ(default_ingredient_spacing(two_spheres(d), 2), blend.stats.grid_spacing);
+  EXPECT_EQ(default_ingredient_spacing(two_spheres(d), 2), 0.25 / 4);
 }
 
 TEST(SceneIngredients, ARootWithoutChildrenIsItsOwnIngredientOverTheWholeDomain) {

@@ -191,6 +191,17 @@ TEST(SweptEnvelope, TrimmedWithCertifiedMembershipTheTranslatedBoxIsItsHull) {
     const Eigen::VectorXd x = patches[0].evaluate({p[0], p[1], p[2], e.times[v]});
     EXPECT_LE((Eigen::Vector3d(x[0], x[1], x[2]) - e.mesh.positions[v]).norm(), 1e-12);
   }
+  // Trimming a superset computed beforehand gives the same boundary as the whole pipeline.
+  const SweptEnvelope superset = swept_envelope_superset(patches);
+  const SweptEnvelope again = trim_swept_envelope(patches, superset);
+  EXPECT_EQ(again.mesh.positions, e.mesh.positions);
+  EXPECT_EQ(again.mesh.triangles, e.mesh.triangles);
+  EXPECT_EQ(again.mesh.parts, e.mesh.parts);
+  EXPECT_EQ(again.times, e.times);
+  EXPECT_EQ(again.stats.trimming.volume, st.volume);
+  SweptEnvelopeOptions bad;
+  bad.contour_cell_factor = 0;
+  EXPECT_THROW(trim_swept_envelope(patches, superset, bad), InvalidInput);
 }
 
 }  // namespace

@@ -14,6 +14,10 @@ enum class SceneIngredients {
   Primitives,
 };
 
+/// The spacing of the ingredients' grid where none is given: the blend's own grid after `levels`
+/// refinements, h / 2^levels (ZeroSetStats::grid_spacing), so both are drawn alike.
+double default_ingredient_spacing(const Scene& scene, int levels);
+
 /// The ingredients of `scene` over the region scene_zero_set meshes (the box, grown to the
 /// domain where there is one), marched on a grid of `spacing` (implicit_zero_set); every
 /// triangle is Part::BlendPrimitive. A root without children is its own single ingredient.

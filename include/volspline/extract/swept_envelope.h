@@ -116,4 +116,10 @@ Eigen::Vector3d swept_envelope_point(const std::vector<BSplineHypervolume>& patc
 /// the superset (!options.trim). \throw as swept_envelope_superset.
 SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options = {});
 
+/// swept_envelope's trimming of a superset already computed by swept_envelope_superset(patches,
+/// options) (with the same patches and options), for callers that want both without computing
+/// the superset twice. \throw InvalidInput for options out of range.
+SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& superset,
+                                  const SweptEnvelopeOptions& options = {});
+
 }  // namespace volspline
