@@ -44,6 +44,8 @@ struct FitRequest {
   double fairing = ControlVectorFitOptions{}.fairing;
   double jump = 0;
   std::string layout = "farthest";
+  int placement_rounds = KnotOptimisationOptions{}.placement_rounds;
+  double spacing_ratio = KnotOptimisationOptions{}.spacing_ratio;
 };
 
 // The N and tilt of two-material:N[:TILT] (tilt 0 when absent); N 0 for a malformed name.
@@ -178,6 +180,15 @@ nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& 
                             {"sweeps_undone", k.undone_sweeps},
                             {"field_normalised_mean_square_before", k.before},
                             {"field_normalised_mean_square_after", k.after}};
+  const KnotPlacementReport& placement = s.knot_placement;
+  j["knot_placement"] = {{"rounds", placement.rounds},
+                         {"round_kept", placement.kept},
+                         {"rounds_failed", placement.failed},
+                         {"fairing", placement.fairing},
+                         {"field_normalised_mean_square_before", placement.before},
+                         {"field_normalised_mean_square_after", placement.after},
+                         {"held_out_field_normalised_mean_square_before", placement.held_out_before},
+                         {"held_out_field_normalised_mean_square_after", placement.held_out_after}};
   const SharpFeatureReport& sharp = s.sharp_features;
   if (sharp.enabled)
     j["sharp_features"] = {{"region_points", sharp.region_points},
@@ -224,9 +235,16 @@ void fit_file(const FitRequest& r) {
   if (!(r.error >= 0)) throw InvalidInput("expected an error bound >= 0, got " + format_double(r.error), "--error");
   if (r.max_tetrahedra < 0) throw InvalidInput("expected a tetrahedron budget >= 0, got " + std::to_string(r.max_tetrahedra), "--max-tetrahedra");
   if (!(r.seconds >= 0)) throw InvalidInput("expected a time budget >= 0 seconds, got " + format_double(r.seconds), "--seconds");
-  if (r.knots != "fixed" && r.knots != "optimise")
-    throw InvalidInput("expected --knots fixed or optimise, got '" + r.knots + "'", "--knots");
-  options.knots.enabled = r.knots == "optimise";
+  if (r.knots != "fixed" && r.knots != "place" && r.knots != "optimise")
+    throw InvalidInput("expected --knots fixed, place or optimise, got '" + r.knots + "'", "--knots");
+  options.knots.enabled = r.knots != "fixed";
+  options.knots.local = r.knots == "optimise";
+  if (r.placement_rounds < 0 || r.placement_rounds > 10)
+    throw InvalidInput("expected 0 to 10 placement rounds, got " + std::to_string(r.placement_rounds), "--placement-rounds");
+  options.knots.placement_rounds = r.placement_rounds;
+  if (!(r.spacing_ratio >= 1 && r.spacing_ratio <= 100))
+    throw InvalidInput("expected a spacing ratio from 1 to 100, got " + format_double(r.spacing_ratio), "--spacing-ratio");
+  options.knots.spacing_ratio = r.spacing_ratio;
   if (!(r.fairing >= 0) || !std::isfinite(r.fairing)) throw InvalidInput("expected a fairing weight >= 0, got " + format_double(r.fairing), "--fairing");
   options.fit.fairing = r.fairing;
   if (!(r.jump >= 0) || !std::isfinite(r.jump)) throw InvalidInput("expected a jump >= 0, got " + format_double(r.jump), "--jump");
@@ -288,9 +306,15 @@ void fit_file(const FitRequest& r) {
               << sh.interface_samples << " interface samples, " << sh.cut_tetrahedra << " tetrahedra cut, " << sh.snapped_points
               << " points moved onto the interface, " << sh.points_across << " data points across it (not fitted)\n";
   }
-  if (r.knots == "optimise") {
+  if (r.knots != "fixed") {
+    const KnotPlacementReport& p = statistics.knot_placement;
+    std::cout << "  knot placement: " << (p.kept ? "round " + std::to_string(p.kept) : std::string("no round")) << " of " << p.rounds
+              << " kept, normalised field mean square "
+              << format_double(p.before) << " -> " << format_double(p.after) << " (at the held-out eighth of the points: "
+              << format_double(p.held_out_before) << " -> " << format_double(p.held_out_after) << ")\n";
     const KnotOptimisationReport& k = statistics.knot_optimisation;
-    std::cout << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved in " << k.sweeps
+    if (r.knots == "optimise")
+      std::cout << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved in " << k.sweeps
               << " sweeps, normalised field mean square " << format_double(k.before) << " -> " << format_double(k.after) << "\n";
   }
   const AdaptiveRefinementReport& refinement = statistics.refinement;
@@ -339,7 +363,14 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--max-tetrahedra", r->max_tetrahedra, "the refinement's tetrahedron budget (default: 8 times the initial domain)");
   cmd->add_option("--seconds", r->seconds, "the refinement's time budget in seconds (default: none)");
   cmd->add_option("--knots", r->knots,
-                  "fixed (default) or optimise: move the sub-knots of vertices with a large 1-ring error (Hua-He-Qin 5.3, Levenberg-Marquardt)");
+                  "fixed (default), place (place the primary knots again where a first fit's error asks for them: error "
+                  "equidistribution, judged on held-out data) or optimise (place, then move the sub-knots of vertices with a "
+                  "large 1-ring error: Hua-He-Qin 5.3, Levenberg-Marquardt; slower)");
+  cmd->add_option("--placement-rounds", r->placement_rounds,
+                  "with --knots place or optimise: rounds of primary-knot placement from the error; the best by the held-out "
+                  "error is kept if better than the first fit (default 3; 0: sub-knots only)");
+  cmd->add_option("--spacing-ratio", r->spacing_ratio,
+                  "with --knots place or optimise: the placed knots' spacing stays within this factor of its median (default 2.5)");
   cmd->add_option("--png", r->png, "also write an X-ray picture of the first fitted attribute (.png)");
   cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
   cmd->add_option("--fairing", r->fairing,

@@ -202,6 +202,15 @@ py::dict fit_statistics(const VolumeFitStatistics& s) {
     attributes[py::str(a.name)] = e;
   }
   out["attributes"] = attributes;
+  py::dict placement;
+  placement["rounds"] = s.knot_placement.rounds;
+  placement["round_kept"] = s.knot_placement.kept;
+  placement["normalised_mean_square_before"] = s.knot_placement.before;
+  placement["normalised_mean_square_after"] = s.knot_placement.after;
+  placement["held_out_normalised_mean_square_before"] = s.knot_placement.held_out_before;
+  placement["held_out_normalised_mean_square_after"] = s.knot_placement.held_out_after;
+  placement["fairing"] = s.knot_placement.fairing;
+  out["knot_placement"] = placement;
   return out;
 }
 
@@ -330,13 +339,15 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
          double error, long long max_tetrahedra, double fairing, const py::object& progress) {
         VolumeData samples = select_attributes(volume_data_from(data), attributes);
         if (samples.attribute_names.empty()) throw InvalidInput("data: no attributes to fit (only x, y, z)");
-        if (knots != "fixed" && knots != "optimise") throw InvalidInput("knots: expected fixed or optimise, got '" + knots + "'");
+        if (knots != "fixed" && knots != "place" && knots != "optimise")
+          throw InvalidInput("knots: expected fixed, place or optimise, got '" + knots + "'");
         if (primary_knots < 0 || !(error >= 0) || max_tetrahedra < 0 || !(fairing >= 0) || !std::isfinite(fairing))
           throw InvalidInput("primary_knots, error, max_tetrahedra and fairing: expected finite numbers >= 0");
         VolumeFitOptions options;
         options.degree = degree;
         options.domain.primary_knots = primary_knots;
-        options.knots.enabled = knots == "optimise";
+        options.knots.enabled = knots != "fixed";
+        options.knots.local = knots == "optimise";
         options.refinement.error = error;
         options.refinement.max_tetrahedra = static_cast<std::size_t>(max_tetrahedra);
         options.fit.fairing = fairing;
@@ -360,7 +371,8 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
       R"(Fits scattered volume data with a DMS simplex spline (Hua-He-Qin §5), as `volspline fit`. data: a
 file (.csv with a header, .ply, .vtu, .vti, .vtk, .nii, .inr), 'marschner-lobb:N' or 'two-material:N',
 or a dict {'points': (N, 3), 'attributes': {name: (N,)}}. attributes: the columns to fit (default
-all). knots: 'fixed' or 'optimise' (§5.3); error > 0 refines adaptively (§5.4) within
+all). knots: 'fixed', 'place' (primary knots placed by error equidistribution, judged on held-out
+data) or 'optimise' (place, then the sub-knots of §5.3); error > 0 refines adaptively (§5.4) within
 max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
 (docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
 per attribute, raw and normalised to the data range.)");

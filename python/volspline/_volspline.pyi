@@ -270,7 +270,8 @@ def fit(data: object, degree: int = ..., *, attributes: List[str] = ..., primary
     """Fits scattered volume data with a DMS simplex spline (Hua-He-Qin §5), as `volspline fit`. data: a
 file (.csv with a header, .ply, .vtu, .vti, .vtk, .nii, .inr), 'marschner-lobb:N' or 'two-material:N',
 or a dict {'points': (N, 3), 'attributes': {name: (N,)}}. attributes: the columns to fit (default
-all). knots: 'fixed' or 'optimise' (§5.3); error > 0 refines adaptively (§5.4) within
+all). knots: 'fixed', 'place' (primary knots placed by error equidistribution, judged on held-out
+data) or 'optimise' (place, then the sub-knots of §5.3); error > 0 refines adaptively (§5.4) within
 max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
 (docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
 per attribute, raw and normalised to the data range."""

@@ -70,8 +70,14 @@ std::vector<int> convex_hull_vertices(std::span<const Eigen::Vector3d> points) {
   return vertices;
 }
 
-std::vector<int> farthest_point_subsample(std::span<const Eigen::Vector3d> points, int count, std::span<const int> seeds) {
+std::vector<int> farthest_point_subsample(std::span<const Eigen::Vector3d> points, int count, std::span<const int> seeds,
+                                          std::span<const double> spacing) {
   if (points.empty()) throw InvalidInput("no points to choose primary knots from");
+  if (!spacing.empty() && spacing.size() != points.size())
+    throw InvalidInput("expected one spacing per point (" + std::to_string(points.size()) + "), got " + std::to_string(spacing.size()), "spacing");
+  for (std::size_t i = 0; i < spacing.size(); ++i)
+    if (!(spacing[i] > 0 && std::isfinite(spacing[i])))
+      throw InvalidInput("expected a positive finite spacing, got " + std::to_string(spacing[i]), "spacing[" + std::to_string(i) + "]");
   if (count < 1) throw InvalidInput("expected at least 1 primary knot, got " + std::to_string(count));
   for (int s : seeds)
     if (s < 0 || static_cast<std::size_t>(s) >= points.size())
@@ -92,7 +98,8 @@ std::vector<int> farthest_point_subsample(std::span<const Eigen::Vector3d> point
     const Eigen::Vector3d c = points[next];
     double farthest = -1;
     for (std::size_t i = 0; i < points.size(); ++i) {
-      distance[i] = std::min(distance[i], (points[i] - c).squaredNorm());
+      const double d = (points[i] - c).squaredNorm();
+      distance[i] = std::min(distance[i], spacing.empty() ? d : d / (spacing[i] * spacing[i]));
       if (distance[i] > farthest) farthest = distance[i], next = i;
     }
     if (farthest <= 0) break;  // every point coincides with a chosen one
@@ -242,7 +249,7 @@ PointCloudDomain point_cloud_domain(std::span<const Eigen::Vector3d> points, con
   } else {
     std::vector<int> seeds = convex_hull_vertices(points);
     if (static_cast<int>(seeds.size()) > count / 2) seeds.clear();
-    chosen = farthest_point_subsample(points, count, seeds);
+    chosen = farthest_point_subsample(points, count, seeds, options.spacing);
     for (int i : chosen) knots.push_back(points[static_cast<std::size_t>(i)]);
   }
   TetrahedralMesh delaunay;

@@ -12,6 +12,7 @@
 #include "volspline/core/error.h"
 #include "volspline/core/binomial.h"
 #include "volspline/simplex/adaptive_refinement.h"
+#include "volspline/simplex/knot_placement.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
 #include "volspline/simplex/knot_clouds.h"
 #include "volspline/simplex/knot_optimisation.h"
@@ -290,6 +291,21 @@ VolumeData split_domain_at_jump(PointCloudDomain& domain, const VolumeData& data
   return fitted;
 }
 
+// The data points i with (i % every == which) == keep, in their order.
+VolumeData every_nth_point(const VolumeData& data, std::size_t every, std::size_t which, bool keep) {
+  VolumeData out;
+  out.attribute_names = data.attribute_names;
+  std::vector<Eigen::Index> rows;
+  for (std::size_t i = 0; i < data.size(); ++i)
+    if ((i % every == which) == keep) rows.push_back(static_cast<Eigen::Index>(i));
+  out.attributes.resize(static_cast<Eigen::Index>(rows.size()), data.attributes.cols());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    out.points.push_back(data.points[static_cast<std::size_t>(rows[r])]);
+    out.attributes.row(static_cast<Eigen::Index>(r)) = data.attributes.row(rows[r]);
+  }
+  return out;
+}
+
 }  // namespace
 
 VolumeFitErrors fit_control_vectors(DmsSplineVolume& volume, const VolumeData& data, const ControlVectorFitOptions& options,
@@ -381,6 +397,11 @@ VolumeFitErrors volume_fit_errors(const DmsSplineVolume& volume, const VolumeDat
   return errors_at(c.a * volume.control_vectors(), data, c.inside, columns);
 }
 
+// Knot placement holds out every kPlacementHoldOut-th data point to judge its rounds.
+constexpr std::size_t kPlacementHoldOut = 8;
+// The fairing weight (at least) of the fits that judge a placement.
+constexpr double kPlacementFairing = 0.1;
+
 VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& options, const std::function<void(const std::string&)>& progress) {
   const auto announce = [&](const std::string& phase) {
     if (progress) progress(phase);
@@ -397,37 +418,127 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     const int n = options.degree;
     domain_options.primary_knots = std::max(4, static_cast<int>(data.size() / static_cast<std::size_t>(2 * (n + 2) * (n + 1))));
   }
-  announce("domain");
-  PointCloudDomain domain = point_cloud_domain(data.points, domain_options);
-  clock.done("domain");
-  std::optional<VolumeData> own_side;  // the data fitted when the domain is split at a jump
-  if (options.jump > 0) {
-    announce("sharp features");
-    own_side = split_domain_at_jump(domain, data, options.jump, statistics.sharp_features);
-    clock.done("sharp features");
+  // The domain, its split at a jump, the knot clouds and the least-squares fit (eq. 10) for a
+  // choice of primary knots; the sharp-feature report and own-side data of the chosen one are kept.
+  struct Built {
+    PointCloudDomain domain;
+    std::optional<VolumeData> own_side;  // the data fitted when the domain is split at a jump
+    SharpFeatureReport sharp;
+    std::optional<DmsSplineVolume> volume;
+    VolumeFitErrors errors;
+  };
+  const auto build = [&](const PointCloudDomainOptions& domain_with, const VolumeData& to_fit, const ControlVectorFitOptions& fit_with,
+                         std::vector<FitPhase>* phases) {
+    Built b;
+    announce("domain");
+    const auto start = std::chrono::steady_clock::now();
+    b.domain = point_cloud_domain(data.points, domain_with);
+    if (phases) phases->push_back({"domain", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+    if (options.jump > 0) {
+      announce("sharp features");
+      const auto split_start = std::chrono::steady_clock::now();
+      b.own_side = split_domain_at_jump(b.domain, to_fit, options.jump, b.sharp);
+      if (phases) phases->push_back({"sharp features", std::chrono::duration<double>(std::chrono::steady_clock::now() - split_start).count()});
+    }
+    KnotCloudOptions cloud_options;
+    cloud_options.spread = options.spread;
+    // An interface meets ∂Ω in wedges as sharp as its angle with the boundary: sub-knots on the ray.
+    if (b.own_side) cloud_options.lean = 0;
+    const auto clouds_start = std::chrono::steady_clock::now();
+    KnotClouds clouds = generate_knot_clouds(b.domain.mesh, options.degree, cloud_options);
+    if (phases) phases->push_back({"knot clouds", std::chrono::duration<double>(std::chrono::steady_clock::now() - clouds_start).count()});
+    b.volume.emplace(std::move(b.domain.mesh), std::move(clouds), DmsControlSharing::Shared);
+    announce("least squares");
+    b.errors = fit_control_vectors(*b.volume, b.own_side ? *b.own_side : to_fit, fit_with, phases);
+    return b;
+  };
+  Built built = build(domain_options, data, options.fit, &statistics.phases);
+  clock.restart();
+  if (options.knots.enabled && options.knots.placement_rounds > 0 && !(options.jump > 0) && !options.domain.lattice) {
+    // Primary knots placed again where the error asks for them (knot_placement.h), as many as
+    // before. Knots crowded where the data are hard can fit the data better and the field worse
+    // (basis functions between the samples that no sample pins down), so a placement is judged
+    // on data it was not fitted to: every 8th point is held out, the candidates are fitted to
+    // the rest, and a round is kept only if the held-out error falls; the chosen domain is then
+    // fitted to all the data. Each round sizes from the last one's fit (a fixed-point iteration
+    // towards equidistribution); the best round by the held-out error is kept.
+    announce("knot placement");
+    const auto start = std::chrono::steady_clock::now();
+    KnotPlacementReport& placement = statistics.knot_placement;
+    placement.before = mean_normalised_field_error(built.errors);
+    placement.after = placement.before;
+    const VolumeData training = every_nth_point(data, kPlacementHoldOut, kPlacementHoldOut / 2, false);
+    const VolumeData held_out = every_nth_point(data, kPlacementHoldOut, kPlacementHoldOut / 2, true);
+    if (held_out.size() > 0 && training.size() > 0) {
+      try {
+        // The judging fits are faired (at least kPlacementFairing): without, basis functions next to
+        // ∂Ω that few samples see ring between them, and that noise, not the layout, decides.
+        // The kept layout's final fit is faired the same way.
+        ControlVectorFitOptions judging = options.fit;
+        judging.fairing = std::max(judging.fairing, kPlacementFairing);
+        Built current = build(domain_options, training, judging, nullptr);
+        placement.held_out_before = mean_normalised_field_error(volume_fit_errors(*current.volume, held_out));
+        placement.held_out_after = placement.held_out_before;
+        PointCloudDomainOptions best = domain_options;
+        for (int round = 0; round < options.knots.placement_rounds; ++round) {
+          ++placement.rounds;
+          PointCloudDomainOptions placed = domain_options;
+          placed.spacing = error_equidistributing_spacing(*current.volume, data, tetrahedron_fit_errors(*current.volume, data),
+                                                          {options.knots.spacing_ratio});
+          // No valid knot clouds for a domain (a sub-knot of a boundary point that stays inside
+          // a clipped, locally concave Ω, say): the spacing is tempered (its square root, twice)
+          // before the rounds give up and the best so far is kept.
+          bool made = false;
+          for (int temper = 0; temper < 3 && !made; ++temper) {
+            try {
+              current = build(placed, training, judging, nullptr);
+              made = true;
+            } catch (const InvalidInput&) {
+              ++placement.failed;
+              for (double& h : placed.spacing) h = std::sqrt(h);
+            }
+          }
+          if (!made) break;
+          const double error = mean_normalised_field_error(volume_fit_errors(*current.volume, held_out));
+          if (error < placement.held_out_after) {
+            placement.held_out_after = error;
+            placement.kept = round + 1;
+            best = std::move(placed);
+          }
+        }
+        if (placement.kept > 0) {
+          // Faired like the fits that chose it: the larger tetrahedra of a placed layout ring
+          // without (measured: docs/fitting.md, "Knot placement").
+          built = build(best, data, judging, nullptr);
+          placement.fairing = judging.fairing;
+          domain_options = std::move(best);
+          placement.after = mean_normalised_field_error(built.errors);
+        }
+      } catch (const InvalidInput&) {
+        // A domain the sizing field could not make valid, or too few held-in points for it:
+        // the uniform domain stays.
+      }
+    }
+    statistics.phases.push_back({"knot placement", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+    clock.restart();
   }
+  statistics.sharp_features = built.sharp;
+  std::optional<VolumeData> own_side = std::move(built.own_side);
   const VolumeData& fitted = own_side ? *own_side : data;
-  KnotCloudOptions cloud_options;
-  cloud_options.spread = options.spread;
-  // An interface meets ∂Ω in wedges as sharp as its angle with the boundary: sub-knots on the ray.
-  if (own_side) cloud_options.lean = 0;
-  KnotClouds clouds = generate_knot_clouds(domain.mesh, options.degree, cloud_options);
-  clock.done("knot clouds");
+  DmsSplineVolume volume = std::move(*built.volume);
   statistics.data_points = data.size();
-  statistics.delaunay_tetrahedra = domain.delaunay_tetrahedra;
-  statistics.domain_tetrahedra = domain.mesh.tetrahedra.size();
-  statistics.primary_knots = domain.mesh.points.size();
-  statistics.knots = clouds.knots.size();
-  for (VertexKind kind : domain.kinds) {
+  statistics.delaunay_tetrahedra = built.domain.delaunay_tetrahedra;
+  statistics.domain_tetrahedra = volume.domain().tetrahedra.size();
+  statistics.primary_knots = volume.domain().points.size();
+  statistics.knots = volume.knots().knots.size();
+  for (VertexKind kind : built.domain.kinds) {
     statistics.corner_vertices += kind == VertexKind::Corner;
     statistics.curve_vertices += kind == VertexKind::Curve;
     statistics.general_vertices += kind == VertexKind::General;
   }
-  DmsSplineVolume volume(std::move(domain.mesh), std::move(clouds), DmsControlSharing::Shared);
   statistics.control_points = static_cast<std::size_t>(volume.control_vector_count());
-  announce("least squares");
-  statistics.errors = fit_control_vectors(volume, fitted, options.fit, &statistics.phases);
-  if (options.knots.enabled) {
+  statistics.errors = std::move(built.errors);
+  if (options.knots.enabled && options.knots.local) {
     announce("knot optimisation");
     const auto start = std::chrono::steady_clock::now();
     KnotOptimisationOptions knots = options.knots;

@@ -90,6 +90,8 @@ TEST_F(FitCli, BadInputExitsWithTwoNamingTheProblem) {
   expect_bad("fit " + path("data.csv") + " --degree 3 --primary-knots 200", "too few");
   expect_bad("fit marschner-lobb:x", "marschner-lobb:N");
   expect_bad("fit " + path("data.csv") + " --knots moving", "--knots");
+  expect_bad("fit " + path("data.csv") + " --knots place --placement-rounds 11", "--placement-rounds");
+  expect_bad("fit " + path("data.csv") + " --knots place --spacing-ratio 0.5", "--spacing-ratio");
   expect_bad("fit " + path("data.csv") + " --error -1", "--error");
   expect_bad("fit " + path("data.csv") + " --max-tetrahedra -5", "--max-tetrahedra");
   expect_bad("fit " + path("data.csv") + " --fairing -0.1", "--fairing");
@@ -136,6 +138,12 @@ TEST_F(FitCli, RefinementAndKnotOptimisationAreReportedInTheStatistics) {
     }
   EXPECT_LE(s["knot_optimisation"]["field_normalised_mean_square_after"].get<double>(),
             s["knot_optimisation"]["field_normalised_mean_square_before"].get<double>());
+  // The placement ran its rounds (3 by default) and never made the held-out error worse.
+  ASSERT_TRUE(s.contains("knot_placement"));
+  EXPECT_GE(s["knot_placement"]["rounds"].get<int>(), 1);
+  EXPECT_TRUE(s["knot_placement"].contains("rounds_failed"));
+  EXPECT_LE(s["knot_placement"]["held_out_field_normalised_mean_square_after"].get<double>(),
+            s["knot_placement"]["held_out_field_normalised_mean_square_before"].get<double>());
   // A budget that stops the refinement is said on stderr.
   if (s["adaptive_refinement"]["state"].get<std::string>().rfind("converged", 0) != 0) {
     EXPECT_NE(r.err.find("adaptive refinement"), std::string::npos) << r.err;

@@ -57,6 +57,41 @@ TEST(PointCloudDomain, FarthestPointSamplesAreGreedyCoveringChoices) {
   EXPECT_EQ(farthest_point_subsample(std::vector<Eigen::Vector3d>(5, Eigen::Vector3d::Ones()), 3).size(), 1u);
 }
 
+TEST(PointCloudDomain, FarthestPointSamplesFollowASizingField) {
+  std::mt19937 random(6);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Eigen::Vector3d> points(3000);
+  for (auto& p : points) p = Eigen::Vector3d(u(random), u(random), u(random));
+  // Half the spacing where x < 1/2: about 2³ = 8 times as many samples per volume there.
+  std::vector<double> spacing(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) spacing[i] = points[i].x() < 0.5 ? 0.5 : 1.0;
+  const std::vector<int> chosen = farthest_point_subsample(points, 180, {}, spacing);
+  ASSERT_EQ(chosen.size(), 180u);
+  int fine = 0;
+  for (int c : chosen) fine += points[static_cast<std::size_t>(c)].x() < 0.5;
+  EXPECT_GT(fine, 4 * (180 - fine));
+  // Each choice maximises the distance to those before it in units of its own spacing.
+  for (std::size_t k = 1; k < 30; ++k) {
+    double farthest = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      double d = INFINITY;
+      for (std::size_t j = 0; j < k; ++j) d = std::min(d, (points[i] - points[static_cast<std::size_t>(chosen[j])]).norm());
+      farthest = std::max(farthest, d / spacing[i]);
+    }
+    const auto c = static_cast<std::size_t>(chosen[k]);
+    double d = INFINITY;
+    for (std::size_t j = 0; j < k; ++j) d = std::min(d, (points[c] - points[static_cast<std::size_t>(chosen[j])]).norm());
+    EXPECT_NEAR(d / spacing[c], farthest, 1e-12 * farthest);
+  }
+  // A constant spacing changes nothing.
+  EXPECT_EQ(farthest_point_subsample(points, 50, {}, std::vector<double>(points.size(), 3.0)), farthest_point_subsample(points, 50));
+  EXPECT_THROW(farthest_point_subsample(points, 10, {}, std::vector<double>(5, 1.0)), InvalidInput);
+  spacing[7] = 0;
+  EXPECT_THROW(farthest_point_subsample(points, 10, {}, spacing), InvalidInput);
+  spacing[7] = NAN;
+  EXPECT_THROW(farthest_point_subsample(points, 10, {}, spacing), InvalidInput);
+}
+
 TEST(PointCloudDomain, OccupancyBallsHaveTheEighthNearestNeighbourRadius) {
   std::mt19937 random(9);
   std::uniform_real_distribution<double> u(-1, 1);

@@ -18,8 +18,13 @@ namespace volspline {
 /// then z); each next one the point farthest from those chosen (ties: the lowest index).
 /// Duplicates of chosen points are never chosen, so fewer than `count` come back when the points
 /// have fewer distinct positions. Deterministic.
-/// \throw InvalidInput for count < 1 or no points.
-std::vector<int> farthest_point_subsample(std::span<const Eigen::Vector3d> points, int count, std::span<const int> seeds = {});
+/// With `spacing` (one positive number per point), distances from point i are divided by
+/// spacing[i]: the next point is the one farthest from those chosen *in units of its own
+/// spacing*, so the chosen points are about spacing[i] apart around point i (a sizing field, as
+/// in mesh generation).
+/// \throw InvalidInput for count < 1, no points, or a spacing that is not positive and finite.
+std::vector<int> farthest_point_subsample(std::span<const Eigen::Vector3d> points, int count, std::span<const int> seeds = {},
+                                          std::span<const double> spacing = {});
 
 /// The indices of the vertices of the points' convex hull (extreme points: points inside or on
 /// a face or edge of the hull are not vertices; the lowest index of duplicates), sorted; empty
@@ -79,6 +84,9 @@ struct PointCloudDomainOptions {
   /// jitter) instead of data points chosen by farthest-point sampling. Experimental
   /// (docs/fitting.md, "Baselines": smooth data).
   bool lattice = false;
+  /// A sizing field for the farthest-point samples: one relative spacing per data point (empty:
+  /// uniform). Knot optimisation (simplex/knot_placement.h) makes it from a first fit's error.
+  std::vector<double> spacing;
 };
 
 struct PointCloudDomain {

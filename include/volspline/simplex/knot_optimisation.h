@@ -13,7 +13,8 @@
 //   The volume built after a sweep is checked in full again (validate_knot_clouds).
 // * The objective sees the attributes only: the identity geometry lies in the spline space for
 //   every valid knot set, so the refit restores it exactly.
-// * A sweep whose refit raises the total error is undone.
+// * A sweep whose refit raises the total error, or no longer reproduces the identity geometry
+//   (to 1e-9 of the data's size), is undone.
 #include "volspline/io/volume_data.h"
 #include "volspline/simplex/dms_spline_volume.h"
 #include "volspline/simplex/volume_fitting.h"

@@ -151,6 +151,28 @@ struct KnotOptimisationOptions {
   /// Knots keep at least this distance from each other and the vertex, and sub-knots stay within
   /// max_radius of the vertex, as fractions of the vertex's shortest edge.
   double min_distance = 0.04, max_radius = 0.45;
+  /// Before the local step: rounds of primary-knot placement from the error (knot_placement.h:
+  /// the domain made again with as many primary knots, spaced by error equidistribution, within
+  /// spacing_ratio of the median spacing); a round is kept only if its fit is better.
+  int placement_rounds = 3;
+  double spacing_ratio = 2.5;
+  /// After the placement, the local step of §5.3 (sub-knots by Levenberg–Marquardt, `sweeps`
+  /// passes); false: placement only (`--knots place`).
+  bool local = true;
+};
+
+struct KnotPlacementReport {
+  /// Placement rounds made, and the round kept (0: none): the one of lowest error at the
+  /// held-out data (every 8th point, not fitted while rounds are judged), if below the first fit's.
+  int rounds = 0, kept = 0;
+  /// Domains without valid knot clouds (each tempers the spacing; three in a row end the rounds).
+  int failed = 0;
+  /// The mean normalised field mean square error at all data (the final fits) and at the
+  /// held-out points (the fits to the others), before and after.
+  double before = 0, after = 0, held_out_before = 0, held_out_after = 0;
+  /// The fairing weight of the fits that judged the rounds and of the kept layout's final fit
+  /// (at least 0.1; 0 when no round was kept: the first fit stays, with the options' fairing).
+  double fairing = 0;
 };
 
 struct KnotOptimisationReport {
@@ -203,6 +225,7 @@ struct VolumeFitStatistics {
   std::vector<FitPhase> phases;
   AdaptiveRefinementReport refinement;
   KnotOptimisationReport knot_optimisation;
+  KnotPlacementReport knot_placement;
   SharpFeatureReport sharp_features;
 };
 
