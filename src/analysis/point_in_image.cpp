@@ -1,6 +1,7 @@
 #include "volspline/analysis/point_in_image.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -174,6 +175,8 @@ struct SplineImage<D>::Search {
 
 template <int D>
 SplineImage<D>::SplineImage(std::vector<TensorSpline<D>> patches, PointInImageOptions options) : patches_(std::move(patches)) {
+  static std::atomic<std::uint64_t> next_generation{1};
+  generation_ = next_generation++;
   if (patches_.empty()) throw InvalidInput("the image of no map is empty; give at least one patch", "patches");
   if (options.max_depth < 0 || options.max_depth > 60 * D) {
     throw InvalidInput("max_depth must be in [0, " + std::to_string(60 * D) + "], got " + std::to_string(options.max_depth), "max_depth");
@@ -319,6 +322,24 @@ template <int D>
 typename SplineImage<D>::Query SplineImage<D>::query(const Eigen::Vector3d& x) const {
   if (!x.allFinite()) throw InvalidInput("the point must be finite", "x");
   Query result;
+  search(x, result);
+  return result;
+}
+
+template <int D>
+typename SplineImage<D>::Query SplineImage<D>::query(const Eigen::Vector3d& x, const Preimage& hint) const {
+  if (!x.allFinite()) throw InvalidInput("the point must be finite", "x");
+  Query result;
+  if (hint.patch < patches_.size()) {
+    const detail::DomainNewtonResult<D> newton = detail::newton_in_domain<D>(patches_[hint.patch], x, hint.parameter, tolerance_, 12);
+    ++result.newton_runs;
+    if (newton.converged) {
+      result.membership = ImageMembership::Inside;
+      result.preimage = Preimage{hint.patch, newton.parameter};
+      result.residual = newton.residual;
+      return result;
+    }
+  }
   search(x, result);
   return result;
 }

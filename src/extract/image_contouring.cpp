@@ -202,6 +202,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         const std::uint64_t k = corner_key(cell, c);
         if (label.try_emplace(k, 0).second) fresh.push_back(k);
       }
+    // In key order (rows along x, then y, then z), so that a thread's consecutive queries are
+    // grid neighbours and a membership test that starts from its last answer (image_membership.h)
+    // starts next door.
+    std::sort(fresh.begin(), fresh.end());
     std::vector<char> values(fresh.size());
     tbb::parallel_for(std::size_t{0}, fresh.size(), [&](std::size_t q) { values[q] = is_inside(grid.point(fresh[q])) ? 1 : 0; });
     for (std::size_t q = 0; q < fresh.size(); ++q) label[fresh[q]] = values[q];

@@ -12,6 +12,7 @@
 #include "volspline/analysis/point_in_image.h"
 #include "volspline/core/elapsed_time.h"
 #include "volspline/core/error.h"
+#include "volspline/extract/image_membership.h"
 #include "volspline/extract/face_tessellation.h"
 #include "volspline/extract/rank_deficient_surface.h"
 #include "volspline/spline/bezier_extraction.h"
@@ -304,14 +305,7 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
   check_trimming_options(options);
   const auto start = Clock::now();
   const SplineImage<4> image(patches);
-  const ImageMembershipTest inside = [&](const Eigen::Vector3d& x) -> std::optional<bool> {
-    switch (image.classify(x)) {
-      case ImageMembership::Inside: return true;
-      case ImageMembership::Outside: return false;
-      case ImageMembership::Undecided: break;
-    }
-    return std::nullopt;
-  };
+  const ImageMembershipTest inside = image_membership_test(image);
   auto finish = [&](TrimmedBoundary trimmed, EnvelopeTrimming method) {
     SweptEnvelope out;
     out.stats = superset.stats;

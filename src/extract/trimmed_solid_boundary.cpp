@@ -6,6 +6,7 @@
 
 #include "volspline/analysis/point_in_image.h"
 #include "volspline/core/error.h"
+#include "volspline/extract/image_membership.h"
 #include "volspline/extract/sheet_line_crossing.h"
 #include "volspline/extract/solid_boundary.h"
 #include "volspline/mesh/parts.h"
@@ -23,14 +24,7 @@ TrimmedSolidBoundary trimmed_solid_boundary(const std::vector<BSplineVolume>& vo
     volume_of_vertex.resize(sheets.num_vertices(), static_cast<int>(i));
   }
   const SplineImage<3> image(volumes);
-  const ImageMembershipTest inside = [&](const Eigen::Vector3d& x) -> std::optional<bool> {
-    switch (image.classify(x)) {
-      case ImageMembership::Inside: return true;
-      case ImageMembership::Outside: return false;
-      case ImageMembership::Undecided: break;
-    }
-    return std::nullopt;
-  };
+  const ImageMembershipTest inside = image_membership_test(image);
   // Vertices onto the true sheets (extract/sheet_line_crossing.h), as for swept solids: a face
   // (part UMin ... WMax: one parameter fixed at a domain bound) or J = 0 (a fold, all three
   // free), by Newton from the (u, v, w) interpolated in the superset triangle.

@@ -227,6 +227,38 @@ TEST(PointInImage, ExactRationalBallWithPolesAndCentre) {
   EXPECT_EQ(tally.undecided, 0);
 }
 
+TEST(PointInImage, AHintFromANeighbourGivesTheSameAnswersAndSkipsTheSearchInside) {
+  // A ball: points along a line through it and out again, each query started from the
+  // preimage of the one before (as the trimmers' grid corners are).
+  const double radius = 1.5;
+  const Eigen::Vector3d centre(0.3, -0.2, 0.1);
+  const SplineImage<3> image({ball(radius, centre)});
+  std::optional<SplineImage<3>::Preimage> last;
+  int skipped = 0, inside = 0;
+  for (int i = 0; i <= 400; ++i) {
+    const Eigen::Vector3d x = centre + Eigen::Vector3d(-2.0 + 0.01 * i, 0.31, -0.17);
+    const auto plain = image.query(x);
+    const auto hinted = last ? image.query(x, *last) : image.query(x);
+    ASSERT_EQ(hinted.membership, plain.membership) << x.transpose();
+    EXPECT_EQ(hinted.membership == ImageMembership::Inside, (x - centre).norm() <= radius) << x.transpose();
+    if (hinted.membership == ImageMembership::Inside) {
+      ++inside;
+      ASSERT_TRUE(hinted.preimage);
+      const Eigen::VectorXd p = image.patches()[hinted.preimage->patch].evaluate(hinted.preimage->parameter);
+      EXPECT_LE((Eigen::Vector3d(p[0], p[1], p[2]) - x).norm(), image.tolerance());
+      skipped += hinted.cells_tested == 0;
+    }
+    if (hinted.preimage) last = hinted.preimage;
+  }
+  // Every inside point but the first is found from its neighbour's preimage.
+  EXPECT_GE(skipped, inside - 2);
+  EXPECT_GT(inside, 100);
+  // A hint naming no patch is ignored.
+  const SplineImage<3>::Preimage nowhere{7, {0.5, 0.5, 0.5}};
+  EXPECT_EQ(image.query(centre, nowhere).membership, ImageMembership::Inside);
+  EXPECT_EQ(image.query(centre + Eigen::Vector3d(2, 0, 0), nowhere).membership, ImageMembership::Outside);
+}
+
 TEST(PointInImage, FoldedVolumeBulgesBeyondItsFaces) {
   std::mt19937 rng(13);
   const double pull = 8;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <random>
 #include <string>
@@ -298,7 +299,7 @@ TEST(SweptExamples, ExampleFilesAreTheConstructions) {
   std::mt19937 rng(8);
   for (const auto& [file, expected] : examples) {
     SCOPED_TRACE(file);
-    const Model model = read_model(std::string(VOLSPLINE_SOURCE_DIR) + "/examples/" + file);
+    const Model model = read_model((std::filesystem::path(VOLSPLINE_SOURCE_DIR) / "examples" / file).string());
     ASSERT_EQ(model.objects.size(), 1u);
     const auto& solid = std::get<SweptSolid>(model.objects[0].spline);
     EXPECT_EQ(solid.frame_name, expected.frame_name);

@@ -15,6 +15,7 @@
 // extent) of the image. docs/envelopes.md, "Membership in the image of a spline map".
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -104,6 +105,12 @@ class SplineImage {
   /// classify and preimage together, with the bound of an Undecided answer and the work done.
   /// \throw InvalidInput if x is not finite.
   Query query(const Eigen::Vector3d& x) const;
+  /// query(x), starting with Newton from `hint` (a preimage of a point near x, say the last
+  /// grid neighbour found inside): if that converges to |s(p) − x| <= tolerance() with p in the
+  /// closed domain, x is Inside by the same criterion as the search's, and the search is
+  /// skipped. Otherwise, or for a hint that names no patch, the full search. Outside and
+  /// Undecided come from the search only, so the certificate is unchanged.
+  Query query(const Eigen::Vector3d& x, const Preimage& hint) const;
 
   const std::vector<TensorSpline<D>>& patches() const { return patches_; }
   /// The box of all control points (Euclidean, after elevation of weight-0 points).
@@ -113,6 +120,8 @@ class SplineImage {
   /// The absolute residual accepted for Inside: options.tolerance * size().
   double tolerance() const { return tolerance_; }
   int max_depth() const { return max_depth_; }
+  /// A number no other SplineImage made in this process has (for caches keyed by image).
+  std::uint64_t generation() const { return generation_; }
   /// Cells kept from construction (the leaves of the precomputed splitting).
   std::size_t precomputed_cells() const { return cells_.size(); }
 
@@ -141,6 +150,7 @@ class SplineImage {
 
   std::vector<TensorSpline<D>> patches_;
   int max_depth_ = 0;
+  std::uint64_t generation_ = 0;
   int max_cells_ = 0;
   double size_ = 1;
   double tolerance_ = 0;
