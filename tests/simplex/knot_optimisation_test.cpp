@@ -1,10 +1,10 @@
 #include "volspline/simplex/knot_optimisation.h"
 
 #include <cmath>
-#include <random>
 
 #include <gtest/gtest.h>
 
+#include "support/random_points.h"
 #include "volspline/construct/volume_data_examples.h"
 #include "volspline/core/error.h"
 #include "volspline/simplex/adaptive_refinement.h"
@@ -13,19 +13,13 @@
 namespace volspline {
 namespace {
 
-std::vector<Eigen::Vector3d> knot_test_points(std::size_t n, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Eigen::Vector3d> points(n);
-  for (auto& p : points) p = Eigen::Vector3d(u(random), u(random), u(random));
-  return points;
-}
+using test_support::random_points_in_box;
 
 // A steep front across the cube: what moving knots can follow.
 double knot_test_front(const Eigen::Vector3d& x) { return std::tanh(12 * (x.x() + 0.3 * x.y() - 0.6)); }
 
 TEST(KnotOptimisation, KeepsTheCloudsValidAndNeverRaisesTheError) {
-  const VolumeData data = sampled_volume_data(knot_test_points(2500, 31), "f", knot_test_front);
+  const VolumeData data = sampled_volume_data(random_points_in_box(2500, 31), "f", knot_test_front);
   VolumeFitOptions options;
   options.degree = 2;
   options.domain.primary_knots = 40;

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include <gtest/gtest.h>
 
+#include "support/random_points.h"
 #include "volspline/construct/volume_data_examples.h"
 #include "volspline/core/error.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
@@ -14,13 +14,7 @@
 namespace volspline {
 namespace {
 
-std::vector<Eigen::Vector3d> placement_test_points(std::size_t n, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Eigen::Vector3d> points(n);
-  for (auto& p : points) p = Eigen::Vector3d(u(random), u(random), u(random));
-  return points;
-}
+using test_support::random_points_in_box;
 
 // A Gaussian blob of width 0.1 in the unit cube, flat far from it: the error of a uniform fit
 // is concentrated at the blob.
@@ -30,7 +24,7 @@ double placement_test_distance(const Eigen::Vector3d& x) { return (x - kPlacemen
 
 // The mean square error against the blob itself at random points of Ω.
 double placement_truth_error(const DmsSplineVolume& volume) {
-  const std::vector<Eigen::Vector3d> points = placement_test_points(20000, 99);
+  const std::vector<Eigen::Vector3d> points = random_points_in_box(20000, 99);
   DmsSplineEvaluator evaluator(volume);
   const int column = volume.attribute_column("f");
   double sum = 0;
@@ -46,7 +40,7 @@ double placement_truth_error(const DmsSplineVolume& volume) {
 }
 
 TEST(KnotPlacement, TheSpacingIsSmallAtTheBlobAndWithinItsBounds) {
-  const VolumeData data = sampled_volume_data(placement_test_points(6000, 3), "f", placement_test_blob);
+  const VolumeData data = sampled_volume_data(random_points_in_box(6000, 3), "f", placement_test_blob);
   VolumeFitOptions options;
   options.domain.primary_knots = 100;
   const VolumeFit fit = fit_volume_data(data, options);
@@ -71,7 +65,7 @@ TEST(KnotPlacement, AnExactFitAsksForUniformSpacing) {
   // A quadratic is in the spline space: every tetrahedron's error is rounding, and a spacing from
   // rounding would be noise. Errors of exactly 0 give 1 everywhere; the fit's own errors here
   // are below 1e-20, and then every spacing is still within the bounds.
-  const VolumeData data = sampled_volume_data(placement_test_points(1500, 4), "f",
+  const VolumeData data = sampled_volume_data(random_points_in_box(1500, 4), "f",
                                               [](const Eigen::Vector3d& x) { return 1 + x.x() * x.y() - 0.5 * x.z() * x.z(); });
   VolumeFitOptions options;
   options.domain.primary_knots = 30;
@@ -86,7 +80,7 @@ TEST(KnotPlacement, AnExactFitAsksForUniformSpacing) {
 }
 
 TEST(KnotPlacement, PlacedKnotsLowerTheErrorAgainstTheTrueField) {
-  const VolumeData data = sampled_volume_data(placement_test_points(6000, 3), "f", placement_test_blob);
+  const VolumeData data = sampled_volume_data(random_points_in_box(6000, 3), "f", placement_test_blob);
   VolumeFitOptions options;
   options.domain.primary_knots = 100;
   const VolumeFit fixed = fit_volume_data(data, options);
@@ -124,7 +118,7 @@ TEST(KnotPlacement, PlacedKnotsLowerTheErrorAgainstTheTrueField) {
 }
 
 TEST(KnotPlacement, PolynomialsAreStillReproducedWithPlacedKnots) {
-  const VolumeData data = sampled_volume_data(placement_test_points(2000, 6), "f", [](const Eigen::Vector3d& x) {
+  const VolumeData data = sampled_volume_data(random_points_in_box(2000, 6), "f", [](const Eigen::Vector3d& x) {
     return 0.3 + x.x() - 2 * x.y() * x.z() + 0.7 * x.x() * x.x();
   });
   VolumeFitOptions options;
