@@ -515,8 +515,11 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
           placement.after = mean_normalised_field_error(built.errors);
         }
       } catch (const InvalidInput&) {
-        // A domain the sizing field could not make valid, or too few held-in points for it:
-        // the uniform domain stays.
+        // Too few held-in points for the first domain's fit, or a kept layout that could not be
+        // fitted to all the data: the first fit stays, and the report says so.
+        placement.kept = 0;
+        placement.fairing = 0;
+        placement.after = placement.before;
       }
     }
     statistics.phases.push_back({"knot placement", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
