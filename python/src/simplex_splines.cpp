@@ -29,6 +29,7 @@
 #include "volspline/mesh/surface_tetrahedralization.h"
 #include "volspline/mesh/tetrahedral_mesh_reader.h"
 #include "volspline/render/xray_image.h"
+#include "volspline/simplex/adaptive_refinement.h"
 #include "volspline/simplex/attribute_assignment.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
 #include "volspline/simplex/dms_spline_volume.h"
@@ -202,6 +203,7 @@ py::dict fit_statistics(const VolumeFitStatistics& s) {
     attributes[py::str(a.name)] = e;
   }
   out["attributes"] = attributes;
+  out["field_normalised_mean_square"] = mean_normalised_field_error(s.errors);
   py::dict placement;
   placement["rounds"] = s.knot_placement.rounds;
   placement["round_kept"] = s.knot_placement.kept;

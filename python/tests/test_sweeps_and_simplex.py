@@ -127,6 +127,7 @@ def test_fit_reproduces_a_linear_field_and_reports_table_1():
     volume, stats = volspline.fit(data, 1)
     assert stats["data_points"] == 600 and stats["control_points"] > 0
     assert stats["attributes"]["temperature"]["max_abs"] < 1e-9
+    assert stats["field_normalised_mean_square"] == stats["attributes"]["temperature"]["normalised_mean_square"]
     inside = p[volume.evaluate(p)["inside"]]
     values = volume.evaluate(inside)["attributes"]["temperature"]
     assert np.abs(values - (2 * inside[:, 0] - inside[:, 1] + 0.5 * inside[:, 2])).max() < 1e-9
