@@ -82,7 +82,7 @@ set(VOLSPLINE_COMPONENT_RULES
   "render=(render/mesh_renderer|pipeline/solid_view_picture)\\.cpp$"
   "cgal=simplex/"
   "cgal=extract/simplex_"
-  "cgal=extract/(superset_trimming|image_contouring|image_membership|swept_envelope|trimmed_solid_boundary)\\.cpp$"
+  "cgal=extract/(superset_trimming|image_contouring|image_membership|sheet_refinement|swept_envelope|trimmed_solid_boundary)\\.cpp$"
   "cgal=mesh/(tetrahedral_mesh|tetrahedron_locator|longest_edge_bisection|delaunay_tetrahedralization|point_cloud_domain|surface_tetrahedralization|interface_split|material_interface)\\.cpp$"
   "cgal=render/xray_image\\.cpp$"
   "core=io/(atomic_file|volume_data|volume_data_inr|volume_data_ply)\\.cpp$"

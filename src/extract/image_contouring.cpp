@@ -28,6 +28,7 @@
 
 #include "volspline/core/elapsed_time.h"
 #include "volspline/core/error.h"
+#include "volspline/extract/sheet_refinement.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
@@ -100,7 +101,8 @@ constexpr std::array<std::array<int, 4>, 6> kContourKuhnTetrahedra{{
 
 TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::vector<double>& extra,
                                        const ImageMembershipTest& inside, const ImageContouringOptions& options,
-                                       const SupersetSheetCrossing& sheet_crossing, const std::vector<int>& sheet_of_triangle) {
+                                       const SupersetSheetCrossing& sheet_crossing, const std::vector<int>& sheet_of_triangle,
+                                       const SheetCrossingFrom& sheet_crossing_from) {
   validate_mesh(superset);
   if (!extra.empty() && extra.size() != superset.num_vertices())
     throw InvalidInput("expected one extra parameter per vertex (" + std::to_string(superset.num_vertices()) + "), got " +
@@ -111,6 +113,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     throw InvalidInput("expected 0 <= superset_error < 0.5", "superset_error");
   if (options.bisection_steps < 1 || options.bisection_steps > 60) throw InvalidInput("expected 1 to 60 bisection steps", "bisection_steps");
   if (options.max_cells < 1) throw InvalidInput("expected a positive budget of cells", "max_cells");
+  if (!(options.refinement_tolerance >= 0 && options.refinement_tolerance < 0.5))
+    throw InvalidInput("expected 0 <= refinement_tolerance < 0.5", "refinement_tolerance");
   if (!sheet_of_triangle.empty() && sheet_of_triangle.size() != superset.num_triangles())
     throw InvalidInput("expected one sheet number per triangle (" + std::to_string(superset.num_triangles()) + "), got " +
                            std::to_string(sheet_of_triangle.size()),
@@ -548,6 +552,15 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // contouring, Ju et al. 2002), clipped to the cell, provided every fan triangle faces the
   // disk's way. The fan keeps the disk's border, so the surface stays closed and oriented.
   const double crease_cos = std::cos(options.crease_angle_degrees * std::numbers::pi / 180);
+  const bool snap_creases = options.refinement_tolerance > 0 && sheet_crossing && sheet_crossing_from && !sheet_of_triangle.empty();
+  auto sheet_point_of = [&](const ContourCrossing& x) {
+    SheetPoint p;
+    p.sheet = sheet_of_triangle[x.triangle];
+    p.triangle = x.triangle;
+    p.parameters << x.parameters, x.extra;
+    p.normal = x.normal;
+    return p;
+  };
   const auto n_crossings = static_cast<int>(crossings.size());
   // Crease fans and flips are made with floating-point positions and local checks only; where
   // the result's self-intersection check (CGAL, exact) finds a pair of faces that a flip or a
@@ -567,6 +580,9 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     vertex_part = crossing_part;
     stats.crease_vertices = 0;
     stats.crease_flips = 0;
+    stats.crease_cells_unsnapped = 0;
+    // Crease points put on the curve where their two sheets meet (extract/sheet_refinement.h).
+    std::unordered_map<int, SheetVertex> crease_sheets;
     std::vector<std::array<int, 3>> faces;
     // Per face: its grid cell, whether a crease fan made it, and the edge a flip replaced.
     std::vector<std::uint64_t> face_cell, face_flip;
@@ -645,6 +661,33 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       }
       for (const auto& [n, c] : region)
         if (!(n.dot(apex) <= c)) return false;
+      // On a crease of two sheets (rank 2) and with the sheets' equations: the point where the
+      // sheets meet in the plane through the apex across the crease, if it is in the region.
+      std::optional<SheetVertex> on_crease;
+      if (rank == 2 && snap_creases) {
+        std::size_t first = 0, second = 0;
+        double smallest = 2;
+        for (std::size_t i = 0; i < corners.size(); ++i)
+          for (std::size_t j = 0; j < i; ++j) {
+            const ContourCrossing &xi = crossings[static_cast<std::size_t>(corners[i])], &xj = crossings[static_cast<std::size_t>(corners[j])];
+            if (!xi.on_sheet || !xj.on_sheet || sheet_of_triangle[xi.triangle] == sheet_of_triangle[xj.triangle]) continue;
+            const double c = std::abs(xi.normal.dot(xj.normal));
+            if (c < smallest) smallest = c, first = i, second = j;
+          }
+        if (smallest < crease_cos) {
+          SheetVertex v;
+          v.on[0] = sheet_point_of(crossings[static_cast<std::size_t>(corners[first])]);
+          v.on[1] = sheet_point_of(crossings[static_cast<std::size_t>(corners[second])]);
+          const Eigen::Vector3d direction = v.on[0].normal.cross(v.on[1].normal);
+          const std::optional<Eigen::Vector3d> x = sheet_crease_point(sheet_crossing_from, v.on[0], v.on[1], apex, direction, grid.h);
+          bool in_region = x.has_value();
+          for (const auto& [n, c] : region) in_region = in_region && n.dot(*x) <= c + inset;
+          if (in_region) {
+            apex = *x;
+            on_crease = v;
+          }
+        }
+      }
       // Each fan triangle faces the way of the disk (area-weighted) or of the cell's triangle it
       // replaces along the border (a sliver standing on the crease may face sideways): a fold of
       // the fan would be a self-intersection.
@@ -672,7 +715,9 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         if ((position_of(corners[j]) - apex).squaredNorm() < (position_of(corners[nearest]) - apex).squaredNorm()) nearest = j;
       const int near_vertex = corners[nearest];
       const int v = static_cast<int>(result.num_vertices());
-      result.add_vertex(apex, result.parameters[static_cast<std::size_t>(near_vertex)]);
+      if (on_crease) crease_sheets.emplace(v, *on_crease);
+      result.add_vertex(apex, on_crease ? Eigen::Vector3d(on_crease->on[0].parameters.head<3>())
+                                        : result.parameters[static_cast<std::size_t>(near_vertex)]);
       if (!extra.empty()) out.extra.push_back(out.extra[static_cast<std::size_t>(near_vertex)]);
       out.source_vertex.push_back(out.source_vertex[static_cast<std::size_t>(near_vertex)]);
       vertex_part.push_back(vertex_part[static_cast<std::size_t>(near_vertex)]);
@@ -728,10 +773,14 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           box.emplace_back(-e, -low(d));
         }
         crease = crease_fan(local, corners, box);
-        if (crease) ++stats.crease_vertices;
+        if (crease) {
+          ++stats.crease_vertices;
+          if (!crease_sheets.count(static_cast<int>(result.num_vertices()) - 1)) ++stats.crease_cells_unsnapped;
+        }
       }
       if (crease) continue;
       if (!(sheet_crossing && options.crease_angle_degrees > 0 && smallest_cos < crease_cos) || !fans_allowed) {
+        if (sheet_crossing && options.crease_angle_degrees > 0 && smallest_cos < crease_cos) ++stats.crease_cells_unsnapped;
         faces.insert(faces.end(), local.begin(), local.end());
         continue;
       }
@@ -774,8 +823,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           }
           if (crease_fan(own, own_corners, faces_of_tet)) {
             ++stats.crease_vertices;
+            if (!crease_sheets.count(static_cast<int>(result.num_vertices()) - 1)) ++stats.crease_cells_unsnapped;
             continue;
           }
+          ++stats.crease_cells_unsnapped;
         }
         faces.insert(faces.end(), own.begin(), own.end());
       }
@@ -873,6 +924,48 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       }
       result.add_triangle(f[0], f[1], f[2], part < 0 ? part_of(f[0]) : part);
     }
+    // Refinement toward the sheets: the grid gives the topology and the creases, the sheets'
+    // equations the accuracy of the smooth parts (extract/sheet_refinement.h).
+    std::vector<std::size_t> face_origin;
+    const bool refine = snap_creases;
+    if (refine) {
+      const auto refine_start = ContourClock::now();
+      std::vector<SheetVertex> sheet_vertices(result.num_vertices());
+      for (std::size_t v = 0; v < sheet_vertices.size(); ++v) {
+        SheetVertex& sv = sheet_vertices[v];
+        if (v >= crossings.size()) {
+          if (const auto it = crease_sheets.find(static_cast<int>(v)); it != crease_sheets.end()) sv = it->second;
+          sv.source = out.source_vertex[v];
+          continue;
+        }
+        sv.source = out.source_vertex[v];
+        const ContourCrossing& x = crossings[v];
+        if (!x.on_sheet || x.normal.isZero()) continue;
+        sv.on[0] = sheet_point_of(x);
+      }
+      SheetRefinementOptions refinement;
+      refinement.tolerance = options.refinement_tolerance * diagonal;
+      refinement.shortest_edge = 1e-3 * grid.h;
+      refinement.inside = [&](const Eigen::Vector3d& x) {
+        ++queries;
+        return inside(x);
+      };
+      refinement.check_distance = 0.25 * reach;
+      const std::size_t before = sheet_vertices.size();
+      const SheetRefinementStats r = refine_to_sheets(result, sheet_vertices, sheet_crossing_from, refinement, &face_origin);
+      for (std::size_t v = before; v < sheet_vertices.size(); ++v) {
+        if (!extra.empty()) out.extra.push_back(sheet_vertices[v].on[0].parameters[3]);
+        out.source_vertex.push_back(sheet_vertices[v].source);
+      }
+      stats.refinement_tolerance = refinement.tolerance;
+      stats.refinement_rounds = r.rounds;
+      stats.refinement_splits = r.split_edges;
+      stats.refinement_failed_edges = r.failed_edges;
+      stats.refinement_unresolved_edges = r.unresolved_edges;
+      stats.refinement_edges_above_tolerance = r.edges_above_tolerance;
+      stats.refinement_largest_remaining = r.largest_remaining_distance;
+      stats.seconds_sheet_refinement = seconds_since(refine_start);
+    }
     // Crossings inside a cell's disk that a crease fan replaced are used by no face: dropped.
     std::vector<int> renumber(result.num_vertices(), -1);
     for (const auto& t : result.triangles)
@@ -901,7 +994,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     // Undo the flips that made a face of an intersecting pair; where neither face is flipped,
     // drop the fans of the cells of the fan faces among them.
     bool changed = false;
-    for (const auto& [f, g] : intersecting) {
+    for (auto [f, g] : intersecting) {
+      if (refine) f = face_origin[f], g = face_origin[g];
       const bool flipped = face_flip[f] != kNoFlip || face_flip[g] != kNoFlip;
       for (const std::size_t h : {f, g}) {
         if (flipped) {

@@ -263,6 +263,10 @@ void check_patches(const std::vector<BSplineHypervolume>& patches, const SweptEn
 void check_trimming_options(const SweptEnvelopeOptions& options) {
   if (!(options.contour_cell_factor > 0 && options.contour_cell_factor * options.tolerance < 0.5))
     throw InvalidInput("expected 0 < contour_cell_factor * tolerance < 0.5", "contour_cell_factor");
+  if (!(options.coarse_cell_factor >= 0 && options.coarse_cell_factor * options.tolerance < 0.5))
+    throw InvalidInput("expected 0 <= coarse_cell_factor * tolerance < 0.5", "coarse_cell_factor");
+  if (!(options.refinement_factor >= 0 && options.refinement_factor * options.tolerance < 0.5))
+    throw InvalidInput("expected 0 <= refinement_factor * tolerance < 0.5", "refinement_factor");
 }
 
 }  // namespace
@@ -337,6 +341,7 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
   }
   ImageContouringOptions contouring = options.contouring;
   contouring.cell_size = options.contour_cell_factor * options.tolerance;
+  contouring.refinement_tolerance = options.refinement_factor * options.tolerance;
   contouring.superset_error = std::min(0.25, 2 * options.tolerance);
   if (!contouring.progress) contouring.progress = options.progress;
   // Vertices onto the true sheets: Newton from the (u, v, w, t) interpolated in the superset
@@ -365,6 +370,20 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
     x.normal = c->normal;
     return x;
   };
+  const SheetCrossingFrom exact_from = [&](std::size_t triangle, const Eigen::Vector4d& start, double lambda, const Eigen::Vector3d& a,
+                                           const Eigen::Vector3d& b) -> std::optional<SheetCrossing> {
+    const auto v0 = static_cast<std::size_t>(superset.mesh.triangles[triangle][0]);
+    const auto& s = patches[static_cast<std::size_t>(superset.patches[v0])];
+    const std::array<double, 4> p{start[0], start[1], start[2], start[3]};
+    const auto c = sheet_line_crossing<4>(s, superset.sheets[triangle], p, lambda, a, b);
+    if (!c) return std::nullopt;
+    SheetCrossing x;
+    x.lambda = c->lambda;
+    x.parameters = Eigen::Vector3d(c->parameter[0], c->parameter[1], c->parameter[2]);
+    x.extra = c->parameter[3];
+    x.normal = c->normal;
+    return x;
+  };
   // One number per sheet: the patch, the fixed parameters and the bounds they are fixed at, fold.
   std::vector<int> sheet_of_triangle;
   sheet_of_triangle.reserve(superset.sheets.size());
@@ -380,8 +399,27 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
       }
     sheet_of_triangle.push_back(((superset.patches[v0] * 16 + sheet.fixed) * 16 + at_max) * 2 + (sheet.fold ? 1 : 0));
   }
-  return finish(contour_image_boundary(superset.mesh, superset.times, inside, contouring, exact, sheet_of_triangle),
-                EnvelopeTrimming::Contouring);
+  // The coarse grid sets the topology and the creases; refinement toward the sheets the
+  // accuracy of the smooth parts. Kept when closed, oriented and free of self-intersections;
+  // edges it could not refine (chamfered creases, failed Newton) are counted in the statistics.
+  std::string rejected;
+  if (options.coarse_cell_factor > 0 && contouring.refinement_tolerance > 0) {
+    ImageContouringOptions coarse = contouring;
+    coarse.cell_size = options.coarse_cell_factor * options.tolerance;
+    TrimmedBoundary trimmed = contour_image_boundary(superset.mesh, superset.times, inside, coarse, exact, sheet_of_triangle, exact_from);
+    const SupersetTrimmingStats& t = trimmed.stats;
+    if (!t.closed || !t.oriented) rejected = "not closed and oriented";
+    else if (!t.self_intersection_free) rejected = std::to_string(t.self_intersecting_pairs) + " self-intersecting pairs";
+    if (rejected.empty()) return finish(std::move(trimmed), EnvelopeTrimming::Contouring);
+  }
+  // The fine grid as before refinement existed: its chords are within the tolerance already.
+  contouring.refinement_tolerance = 0;
+  TrimmedBoundary trimmed = contour_image_boundary(superset.mesh, superset.times, inside, contouring, exact, sheet_of_triangle, exact_from);
+  if (!rejected.empty()) {
+    trimmed.stats.grid_passes = 2;
+    trimmed.stats.coarse_grid_rejected = rejected;
+  }
+  return finish(std::move(trimmed), EnvelopeTrimming::Contouring);
 }
 
 }  // namespace volspline

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -66,6 +67,28 @@ TEST_F(SweepEnvelopeCli, ViewTurnsTheCameraOfThePicture) {
   EXPECT_EQ(std::string(std::istreambuf_iterator<char>(cut_mesh), {}), mesh_bytes);
 }
 
+// --coarse-cells: a ball of radius 1 along a segment of length 3 (the capsule, volume
+// 3 pi + 4/3 pi) contoured on a grid of 16 tolerances with its edges refined toward the sheets:
+// closed, oriented, free of self-intersections, the volume of the inscribed surface below the
+// capsule's and within 1e-3 of it.
+TEST_F(SweepEnvelopeCli, ACoarseGridRefinedTowardTheSheetsKeepsTheCapsule) {
+  const auto r = test_support::run_cli("sweep-envelope " + example("swept-translated-ball.json") + " -o " + path("c.ply") +
+                                       " --coarse-cells 16 --stats " + path("s.json"),
+                                       tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("refined toward the sheets"), std::string::npos) << r.out;
+  const TriangleMesh mesh = read_mesh(path("c.ply"));
+  EXPECT_TRUE(edge_statistics(mesh).closed_and_oriented());
+  std::ifstream in(path("s.json"));
+  const auto o = nlohmann::json::parse(in)["objects"][0];
+  EXPECT_TRUE(o["self_intersection_free"].get<bool>());
+  EXPECT_EQ(o["trimming"]["grid_passes"].get<int>(), 1);
+  EXPECT_GT(o["trimming"]["refinement"]["split_edges"].get<int>(), 0);
+  const double exact = 3 * std::numbers::pi + 4.0 / 3 * std::numbers::pi;
+  EXPECT_LT(o["volume"].get<double>(), exact);
+  EXPECT_NEAR(o["volume"].get<double>(), exact, 1e-3 * exact);
+}
+
 TEST_F(SweepEnvelopeCli, BadInputExitsTwoAndWritesNothing) {
   // A model without a swept solid, a bad option value, an unknown bounds method.
   for (const std::string& args : {example("swept-patch.json") + " -o " + path("a.ply"),
@@ -73,7 +96,9 @@ TEST_F(SweepEnvelopeCli, BadInputExitsTwoAndWritesNothing) {
                                  example("swept-translated-box.json") + " -o " + path("a.ply") + " --bounds box",
                                  example("swept-translated-box.json") + " -o " + path("a.ply") + " --png " + path("a.png") + " --view 0,0,0",
                                  example("swept-translated-box.json") + " -o " + path("a.ply") + " --png " + path("a.png") + " --cut-open 0,0,0,1",
-                                 example("swept-translated-box.json") + " -o " + path("a.ply") + " --cut-open 1,0,0,1"}) {
+                                 example("swept-translated-box.json") + " -o " + path("a.ply") + " --cut-open 1,0,0,1",
+                                 example("swept-translated-box.json") + " -o " + path("a.ply") + " --coarse-cells -1",
+                                 example("swept-translated-box.json") + " -o " + path("a.ply") + " --coarse-cells 16 --refine 0"}) {
     const auto r = test_support::run_cli("sweep-envelope " + args, tmp.path());
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_FALSE(std::filesystem::exists(path("a.ply"))) << args;

@@ -52,6 +52,10 @@ struct ImageContouringOptions {
   /// Tetrahedra whose vertices' sheet normals differ by more than this get a crease vertex
   /// (only with sheet equations; 0 turns it off).
   double crease_angle_degrees = 30;
+  /// With `sheet_crossing_from`: edges between two vertices on one sheet are split until their
+  /// midpoints are within this distance (relative to the diagonal) of the sheet
+  /// (extract/sheet_refinement.h); 0: no refinement.
+  double refinement_tolerance = 0;
   Progress* progress = nullptr;
 };
 
@@ -70,6 +74,12 @@ using SupersetSheetCrossing = std::function<std::optional<SheetCrossing>(std::si
                                                                          double lambda, const Eigen::Vector3d& a,
                                                                          const Eigen::Vector3d& b)>;
 
+/// The crossing of [a, b] with the sheet of superset triangle `triangle`, Newton started from
+/// the sheet's parameters `start` (u, v, w, extra) at `lambda` on the segment; nothing if it
+/// does not converge on the segment. Called from several threads at once.
+using SheetCrossingFrom = std::function<std::optional<SheetCrossing>(std::size_t triangle, const Eigen::Vector4d& start, double lambda,
+                                                                     const Eigen::Vector3d& a, const Eigen::Vector3d& b)>;
+
 /// The boundary of S, outward, from the superset of it and a membership test for S (called
 /// from several threads at once; undecided counts as inside). Output as trim_superset: parts,
 /// parameters and `extra` from the sheet (`sheet_crossing`) or interpolated in the superset triangle each
@@ -78,10 +88,12 @@ using SupersetSheetCrossing = std::function<std::optional<SheetCrossing>(std::si
 /// range or a grid beyond max_cells. `sheet_of_triangle` (optional, with sheet_crossing): per
 /// superset triangle a number shared by the triangles of one sheet; each sheet within
 /// superset_error of a crossed edge is then tried from its nearest triangle, also where its
-/// chords miss the edge (\throw InvalidInput unless one per triangle).
+/// chords miss the edge (\throw InvalidInput unless one per triangle). `sheet_crossing_from`
+/// (optional, with both): the refinement toward the sheets of options.refinement_tolerance.
 TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::vector<double>& extra,
                                        const ImageMembershipTest& inside, const ImageContouringOptions& options = {},
                                        const SupersetSheetCrossing& sheet_crossing = {},
-                                       const std::vector<int>& sheet_of_triangle = {});
+                                       const std::vector<int>& sheet_of_triangle = {},
+                                       const SheetCrossingFrom& sheet_crossing_from = {});
 
 }  // namespace volspline

@@ -59,6 +59,21 @@ struct SupersetTrimmingStats {
                crossings_after_bisection = 0, crease_vertices = 0, crease_flips = 0;
   /// Contouring: rounds in which crease flips or fans that made self-intersecting faces were undone.
   std::int64_t crease_repairs = 0;
+  /// Contouring with refinement toward the sheets (extract/sheet_refinement.h): the tolerance
+  /// (absolute), rounds, edges split, edges whose sheet point was not found, edges left above
+  /// the tolerance and the largest distance left.
+  double refinement_tolerance = 0;
+  std::int64_t refinement_rounds = 0, refinement_splits = 0, refinement_failed_edges = 0, refinement_edges_above_tolerance = 0,
+               refinement_unresolved_edges = 0;
+  double refinement_largest_remaining = 0, seconds_sheet_refinement = 0;
+  /// Contouring: cells (or tetrahedra) across a crease whose crease point could not be put on
+  /// the curve where its two sheets meet (no fan, a corner of three sheets, or Newton failed):
+  /// chamfered there by up to about the cell size.
+  std::int64_t crease_cells_unsnapped = 0;
+  /// Swept envelopes: grids contoured (1: the coarse grid with refinement was kept; 2: it was
+  /// not, and the fine grid was used) and why the coarse one was not kept.
+  int grid_passes = 1;
+  std::string coarse_grid_rejected;
 };
 
 /// Where on the true surface a point of the superset is: for superset triangle `triangle` and

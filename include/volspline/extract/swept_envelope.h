@@ -62,6 +62,15 @@ struct SweptEnvelopeOptions {
   /// Contouring: grid spacing in multiples of `tolerance` (the other contouring options as
   /// `contouring` says; its cell_size and superset_error are set from tolerance).
   double contour_cell_factor = 3;
+  /// Contouring on a coarse grid instead (this many multiples of `tolerance`; 0: not, the
+  /// default), its edges refined toward the sheets to refinement_factor × tolerance
+  /// (extract/sheet_refinement.h): the grid sets the topology, the sheets' equations the
+  /// accuracy of smooth parts. Kept when closed, oriented and free of self-intersections
+  /// (otherwise the grid of contour_cell_factor is used, unrefined); creases it cannot resolve
+  /// are chamfered and counted (`refinement_unresolved_edges`). docs/envelopes.md, "Refinement
+  /// toward the sheets".
+  double coarse_cell_factor = 0;
+  double refinement_factor = 0.25;
   ImageContouringOptions contouring;
   Progress* progress = nullptr;
 };

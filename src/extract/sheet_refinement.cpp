@@ -1,0 +1,318 @@
+#include "volspline/extract/sheet_refinement.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <Eigen/LU>
+#include <tbb/parallel_for.h>
+
+#include "volspline/core/error.h"
+
+namespace volspline {
+
+namespace {
+
+std::uint64_t refinement_edge_key(int p, int q) {
+  return (static_cast<std::uint64_t>(std::min(p, q)) << 32) | static_cast<std::uint32_t>(std::max(p, q));
+}
+
+struct EdgeSplit {
+  std::uint64_t key = 0;
+  bool found = false;
+  double distance = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  SheetVertex vertex;
+};
+
+// The sheets two vertices share: both on the same two (a crease edge), on one common sheet, or
+// on two sheets that meet smoothly (a seam): the kind and, per end, the sheet point to use.
+enum class EdgeKind { None, Crease, Sheet, Seam };
+
+}  // namespace
+
+std::optional<Eigen::Vector3d> sheet_crease_point(const SheetCrossingFrom& crossing, SheetPoint& a, SheetPoint& b, const Eigen::Vector3d& x0,
+                                                  const Eigen::Vector3d& direction, double reach) {
+  if (!crossing || !(direction.norm() > 0) || !(reach > 0)) return std::nullopt;
+  const Eigen::Vector3d d = direction.normalized();
+  Eigen::Vector3d x = x0;
+  for (int step = 0; step < 12; ++step) {
+    std::array<Eigen::Vector3d, 2> on;
+    for (int k = 0; k < 2; ++k) {
+      SheetPoint& sheet = k == 0 ? a : b;
+      // Along the sheet's normal within the plane: the trace's normal there.
+      Eigen::Vector3d g = sheet.normal - sheet.normal.dot(d) * d;
+      if (!(g.norm() > 1e-9)) return std::nullopt;
+      g.normalize();
+      const Eigen::Vector3d from = x - reach * g, to = x + reach * g;
+      const std::optional<SheetCrossing> c = crossing(sheet.triangle, sheet.parameters, 0.5, from, to);
+      if (!c || !(c->lambda >= 0 && c->lambda <= 1) || c->normal.isZero()) return std::nullopt;
+      on[static_cast<std::size_t>(k)] = from + c->lambda * (to - from);
+      sheet.parameters << c->parameters, c->extra;
+      sheet.normal = c->normal.normalized();
+    }
+    // The two tangent planes and the plane of the section meet in one point.
+    Eigen::Matrix3d m;
+    m.row(0) = a.normal.transpose();
+    m.row(1) = b.normal.transpose();
+    m.row(2) = d.transpose();
+    const Eigen::Vector3d r(a.normal.dot(on[0]), b.normal.dot(on[1]), d.dot(x0));
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(m);
+    if (!lu.isInvertible() || std::abs(a.normal.dot(b.normal)) > 0.999) return std::nullopt;
+    const Eigen::Vector3d next = lu.solve(r);
+    const double moved = (next - x).norm();
+    x = next;
+    if ((x - x0).norm() > 2 * reach) return std::nullopt;
+    if (moved <= 1e-9 * reach && (on[0] - on[1]).norm() <= 1e-6 * reach) return x;
+  }
+  return std::nullopt;
+}
+
+SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVertex>& vertices, const SheetCrossingFrom& crossing,
+                                      const SheetRefinementOptions& options, std::vector<std::size_t>* face_origin) {
+  if (vertices.size() != mesh.num_vertices())
+    throw InvalidInput("expected one sheet vertex per mesh vertex (" + std::to_string(mesh.num_vertices()) + "), got " +
+                           std::to_string(vertices.size()),
+                       "vertices");
+  if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) throw InvalidInput("expected a positive tolerance", "tolerance");
+  if (!(options.shortest_edge >= 0)) throw InvalidInput("expected shortest_edge >= 0", "shortest_edge");
+  if (options.max_rounds < 0 || options.max_rounds > 60) throw InvalidInput("expected 0 to 60 rounds", "max_rounds");
+  SheetRefinementStats stats;
+  std::vector<std::size_t> origin(mesh.num_triangles());
+  for (std::size_t f = 0; f < origin.size(); ++f) origin[f] = f;
+  auto finish = [&] {
+    if (face_origin) *face_origin = std::move(origin);
+    return stats;
+  };
+  if (!crossing) return finish();
+  // Edges found within the tolerance (or whose sheet point was not found) are not tried again:
+  // their ends do not move, so neither does the answer.
+  std::unordered_set<std::uint64_t> settled;
+  const double seam_cos = std::cos(options.seam_angle_degrees * 3.14159265358979323846 / 180);
+  const double checked_seam_cos = std::cos(80 * 3.14159265358979323846 / 180);
+  struct Shared {
+    EdgeKind kind = EdgeKind::None;
+    SheetPoint p, q;
+  };
+  auto edge_kind = [&](const SheetVertex& vp, const SheetVertex& vq) {
+    Shared shared;
+    const auto crease = [](const SheetVertex& v) { return v.on[0].sheet >= 0 && v.on[1].sheet >= 0; };
+    if (crease(vp) && crease(vq)) {
+      if (vp.on[0].sheet == vq.on[0].sheet && vp.on[1].sheet == vq.on[1].sheet) {
+        shared.kind = EdgeKind::Crease;
+        return shared;
+      }
+      if (vp.on[0].sheet == vq.on[1].sheet && vp.on[1].sheet == vq.on[0].sheet) {
+        shared.kind = EdgeKind::Crease;
+        return shared;
+      }
+    }
+    for (const SheetPoint& a : vp.on)
+      for (const SheetPoint& b : vq.on)
+        if (a.sheet >= 0 && a.sheet == b.sheet && shared.kind == EdgeKind::None) {
+          shared.kind = EdgeKind::Sheet;
+          shared.p = a;
+          shared.q = b;
+        }
+    if (shared.kind == EdgeKind::None && !crease(vp) && !crease(vq) && vp.on[0].sheet >= 0 && vq.on[0].sheet >= 0 &&
+        std::abs(vp.on[0].normal.normalized().dot(vq.on[0].normal.normalized())) >= (options.inside ? checked_seam_cos : seam_cos)) {
+      shared.kind = EdgeKind::Seam;
+      shared.p = vp.on[0];
+      shared.q = vq.on[0];
+    }
+    return shared;
+  };
+  // A circular arc of chord L whose end normals differ by the angle θ stands L θ / 8 above its
+  // chord.
+  auto arc_deviation = [&](int p, int q, const Eigen::Vector3d& np, const Eigen::Vector3d& nq) {
+    const double length = (mesh.positions[static_cast<std::size_t>(p)] - mesh.positions[static_cast<std::size_t>(q)]).norm();
+    if (np.isZero() || nq.isZero()) return length;
+    return length * std::acos(std::clamp(std::abs(np.normalized().dot(nq.normalized())), 0.0, 1.0)) / 8;
+  };
+  for (int round = 0;; ++round) {
+    std::vector<EdgeSplit> candidates;
+    {
+      std::unordered_set<std::uint64_t> seen;
+      for (const auto& t : mesh.triangles)
+        for (int j = 0; j < 3; ++j) {
+          const int p = t[static_cast<std::size_t>(j)], q = t[static_cast<std::size_t>((j + 1) % 3)];
+          const std::uint64_t key = refinement_edge_key(p, q);
+          if (settled.count(key) || !seen.insert(key).second) continue;
+          const SheetVertex &vp = vertices[static_cast<std::size_t>(std::min(p, q))], &vq = vertices[static_cast<std::size_t>(std::max(p, q))];
+          if (edge_kind(vp, vq).kind == EdgeKind::None) {
+            // Across a crease that no crease point resolves (a chamfer): counted where a chord
+            // of that length between those normals may stand off the boundary by more than the
+            // tolerance.
+            if (round == 0 && vp.on[0].sheet >= 0 && vq.on[0].sheet >= 0 && arc_deviation(p, q, vp.on[0].normal, vq.on[0].normal) > options.tolerance)
+              ++stats.unresolved_edges;
+            settled.insert(key);
+            continue;
+          }
+          if ((mesh.positions[static_cast<std::size_t>(p)] - mesh.positions[static_cast<std::size_t>(q)]).norm() <= options.shortest_edge) continue;
+          EdgeSplit e;
+          e.key = key;
+          candidates.push_back(e);
+        }
+      std::sort(candidates.begin(), candidates.end(), [](const EdgeSplit& a, const EdgeSplit& b) { return a.key < b.key; });
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        EdgeSplit& e = candidates[i];
+        const auto p = static_cast<int>(e.key >> 32), q = static_cast<int>(e.key & 0xffffffffu);
+        const SheetVertex &vp = vertices[static_cast<std::size_t>(p)], &vq = vertices[static_cast<std::size_t>(q)];
+        const Eigen::Vector3d &xp = mesh.positions[static_cast<std::size_t>(p)], &xq = mesh.positions[static_cast<std::size_t>(q)];
+        const double length = (xq - xp).norm();
+        const Eigen::Vector3d middle = 0.5 * (xp + xq);
+        const Shared shared = edge_kind(vp, vq);
+        if (shared.kind == EdgeKind::Crease) {
+          SheetVertex v = vp;
+          const std::optional<Eigen::Vector3d> x = sheet_crease_point(crossing, v.on[0], v.on[1], middle, xq - xp, 0.5 * length);
+          if (!x) continue;
+          e.found = true;
+          e.position = *x;
+          e.distance = (*x - middle).norm();
+          e.vertex = v;
+          continue;
+        }
+        const SheetPoint &sp = shared.p, &sq = shared.q;
+        Eigen::Vector3d normal = sp.normal + (sp.normal.dot(sq.normal) < 0 ? -sq.normal : sq.normal);
+        if (!(normal.norm() > 1e-12)) normal = sp.normal;
+        if (!(normal.norm() > 1e-12)) continue;
+        normal.normalize();
+        // A circular arc of chord L whose end normals differ by the angle θ stands L θ / 8 above
+        // its chord. Edges estimated at a quarter of the tolerance or less are not solved for
+        // (most of a smooth boundary); the estimate misses S-shaped edges, whose deviation is
+        // of third order in L.
+        const double angle = std::acos(std::clamp(std::abs(sp.normal.normalized().dot(sq.normal.normalized())), 0.0, 1.0));
+        if (length * angle / 8 <= 0.25 * options.tolerance) {
+          e.found = true;
+          e.distance = 0;
+          continue;
+        }
+        const Eigen::Vector3d a = middle - 0.5 * length * normal, b = middle + 0.5 * length * normal;
+        // One sheet: Newton from the mean of the ends' parameters. A seam between two sheets
+        // that meet smoothly (patches of one surface): each end's sheet from that end.
+        std::optional<SheetCrossing> c;
+        SheetPoint on = sp;
+        // Where the mean fails (a sheet closed on itself: a tube's seam w = 0 ~ 1, where the
+        // mean lies on the far side), from each end's own parameters.
+        if (shared.kind == EdgeKind::Sheet) c = crossing(sp.triangle, 0.5 * (sp.parameters + sq.parameters), 0.5, a, b);
+        for (int end = 0; end < 2 && !(c && c->lambda >= 0 && c->lambda <= 1); ++end) {
+          on = end == 0 ? sp : sq;
+          c = crossing(on.triangle, on.parameters, 0.5, a, b);
+        }
+        if (!c || !(c->lambda >= 0 && c->lambda <= 1)) continue;
+        const Eigen::Vector3d position = a + c->lambda * (b - a);
+        if (shared.kind == EdgeKind::Seam && std::abs(sp.normal.normalized().dot(sq.normal.normalized())) < seam_cos) {
+          // A seam or a crease: the point must be on the boundary, not on a sheet's interior part.
+          const Eigen::Vector3d step = options.check_distance * c->normal.normalized();
+          const std::optional<bool> plus = options.inside(position + step), minus = options.inside(position - step);
+          if (!plus || !minus || *plus == *minus) continue;
+        }
+        e.found = true;
+        e.position = position;
+        on.parameters << c->parameters, c->extra;
+        on.normal = c->normal;
+        e.vertex.on[0] = on;
+        e.vertex.source = vp.source;
+        e.distance = (e.position - middle).norm();
+      }
+    });
+    std::unordered_map<std::uint64_t, int> split_at;
+    std::int64_t above = 0;
+    double largest = 0;
+    for (const EdgeSplit& e : candidates) {
+      if (!e.found) {
+        ++stats.failed_edges;
+        const auto p = static_cast<int>(e.key >> 32), q = static_cast<int>(e.key & 0xffffffffu);
+        if (arc_deviation(p, q, vertices[static_cast<std::size_t>(p)].on[0].normal, vertices[static_cast<std::size_t>(q)].on[0].normal) >
+            options.tolerance)
+          ++stats.unresolved_edges;
+        settled.insert(e.key);
+        continue;
+      }
+      if (e.distance <= options.tolerance) {
+        settled.insert(e.key);
+        continue;
+      }
+      ++above;
+      largest = std::max(largest, e.distance);
+    }
+    if (above == 0) break;
+    if (round >= options.max_rounds) {
+      stats.edges_above_tolerance = above;
+      stats.largest_remaining_distance = largest;
+      break;
+    }
+    stats.rounds = round + 1;
+    for (const EdgeSplit& e : candidates) {
+      if (!e.found || e.distance <= options.tolerance) continue;
+      split_at.emplace(e.key, mesh.add_vertex(e.position, e.vertex.on[0].parameters.head<3>()));
+      vertices.push_back(e.vertex);
+      ++stats.split_edges;
+    }
+    // Faces split by their split edges, orientation kept.
+    std::vector<std::array<int, 3>> triangles;
+    std::vector<int> parts;
+    std::vector<std::size_t> new_origin;
+    triangles.reserve(mesh.triangles.size() * 2);
+    parts.reserve(mesh.triangles.size() * 2);
+    new_origin.reserve(mesh.triangles.size() * 2);
+    std::size_t parent = 0;
+    auto emit = [&](int a, int b, int c, int part) {
+      triangles.push_back({a, b, c});
+      parts.push_back(part);
+      new_origin.push_back(origin[parent]);
+    };
+    auto midpoint_of = [&](int p, int q) {
+      const auto it = split_at.find(refinement_edge_key(p, q));
+      return it == split_at.end() ? -1 : it->second;
+    };
+    auto position = [&](int v) -> const Eigen::Vector3d& { return mesh.positions[static_cast<std::size_t>(v)]; };
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+      std::array<int, 3> t = mesh.triangles[f];
+      const int part = mesh.parts[f];
+      parent = f;
+      std::array<int, 3> m{midpoint_of(t[0], t[1]), midpoint_of(t[1], t[2]), midpoint_of(t[2], t[0])};
+      const int splits = static_cast<int>(std::count_if(m.begin(), m.end(), [](int v) { return v >= 0; }));
+      if (splits == 0) {
+        emit(t[0], t[1], t[2], part);
+      } else if (splits == 3) {
+        emit(t[0], m[0], m[2], part);
+        emit(m[0], t[1], m[1], part);
+        emit(m[2], m[1], t[2], part);
+        emit(m[0], m[1], m[2], part);
+      } else if (splits == 1) {
+        while (m[0] < 0) {
+          std::rotate(t.begin(), t.begin() + 1, t.end());
+          std::rotate(m.begin(), m.begin() + 1, m.end());
+        }
+        emit(t[0], m[0], t[2], part);
+        emit(m[0], t[1], t[2], part);
+      } else {
+        // The unsplit edge last: (t2, t0).
+        while (m[2] >= 0) {
+          std::rotate(t.begin(), t.begin() + 1, t.end());
+          std::rotate(m.begin(), m.begin() + 1, m.end());
+        }
+        emit(m[0], t[1], m[1], part);
+        if ((position(t[0]) - position(m[1])).squaredNorm() <= (position(m[0]) - position(t[2])).squaredNorm()) {
+          emit(t[0], m[0], m[1], part);
+          emit(t[0], m[1], t[2], part);
+        } else {
+          emit(t[0], m[0], t[2], part);
+          emit(m[0], m[1], t[2], part);
+        }
+      }
+    }
+    mesh.triangles = std::move(triangles);
+    mesh.parts = std::move(parts);
+    origin = std::move(new_origin);
+  }
+  return finish();
+}
+
+}  // namespace volspline
