@@ -572,6 +572,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   const std::vector<int> crossing_part = vertex_part;
   constexpr std::uint64_t kNoFlip = ~std::uint64_t{0};
   std::set<std::uint64_t> unfanned_cells, unflipped_edges;
+  // Crossings whose edges are not refined: corners of faces that refinement made intersect.
+  std::set<int> unrefined_vertices;
   const std::int64_t max_rounds = 4;
   for (std::int64_t round = 0;; ++round) {
     result = crossing_vertices;
@@ -680,7 +682,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           v.on[1] = sheet_point_of(crossings[static_cast<std::size_t>(corners[second])]);
           const Eigen::Vector3d direction = v.on[0].normal.cross(v.on[1].normal);
           const std::optional<Eigen::Vector3d> x = sheet_crease_point(sheet_crossing_from, v.on[0], v.on[1], apex, direction, grid.h);
-          bool in_region = x.has_value();
+          // A crease only where the sheets meet at the crease angle or more there: two sheets
+          // of one smooth surface (a seam, a coarse cell's curvature) meet tangentially, where
+          // their meeting point is ill-conditioned and not needed.
+          bool in_region = x.has_value() && std::abs(v.on[0].normal.normalized().dot(v.on[1].normal.normalized())) < crease_cos;
           for (const auto& [n, c] : region) in_region = in_region && n.dot(*x) <= c + inset;
           if (in_region) {
             apex = *x;
@@ -939,6 +944,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           continue;
         }
         sv.source = out.source_vertex[v];
+        sv.frozen = unrefined_vertices.count(static_cast<int>(v)) > 0;
         const ContourCrossing& x = crossings[v];
         if (!x.on_sheet || x.normal.isZero()) continue;
         sv.on[0] = sheet_point_of(x);
@@ -994,8 +1000,21 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     // Undo the flips that made a face of an intersecting pair; where neither face is flipped,
     // drop the fans of the cells of the fan faces among them.
     bool changed = false;
+    std::vector<int> children(refine ? faces.size() : 0, 0);
+    if (refine)
+      for (const std::size_t o : face_origin) ++children[o];
     for (auto [f, g] : intersecting) {
-      if (refine) f = face_origin[f], g = face_origin[g];
+      if (refine) {
+        // Faces refinement made (their face before it was split): no refinement at its corners.
+        for (const std::size_t h : {f, g}) {
+          const auto& parent = faces[face_origin[h]];
+          if (children[face_origin[h]] > 1)
+            for (int v : parent)
+              if (v < n_crossings) changed = unrefined_vertices.insert(v).second || changed;
+        }
+        f = face_origin[f];
+        g = face_origin[g];
+      }
       const bool flipped = face_flip[f] != kNoFlip || face_flip[g] != kNoFlip;
       for (const std::size_t h : {f, g}) {
         if (flipped) {

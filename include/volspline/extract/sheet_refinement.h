@@ -43,6 +43,8 @@ struct SheetPoint {
 struct SheetVertex {
   std::array<SheetPoint, 2> on{};
   int source = 0;
+  /// Edges at this vertex are not split (a caller undoing refinement that made faces intersect).
+  bool frozen = false;
 };
 
 /// The point where sheets a and b meet (a crease of the boundary) in the plane through x0
@@ -69,6 +71,11 @@ struct SheetRefinementOptions {
   /// along its normal (the crease points of extract/image_contouring.h are checked alike).
   ImageMembershipTest inside;
   double check_distance = 0;
+  /// With a membership test: an edge across a crease that no crease point resolves (a
+  /// chamfer) is split where its two sheets meet (sheet_crease_point, checked on the boundary).
+  /// Off by default: on the paper's examples it made more faces intersect than it resolved
+  /// (docs/envelopes.md).
+  bool split_across_creases = false;
 };
 
 struct SheetRefinementStats {
