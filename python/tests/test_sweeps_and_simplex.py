@@ -42,6 +42,10 @@ def test_envelope_of_a_translated_box_is_the_hull(tmp_path, cli):
     assert envelope["times"].min() >= 0 and envelope["times"].max() <= 1
     superset = volspline.sweep_envelope(solid, superset=True)
     assert set(np.unique(superset["parts"])) <= {13, 14, 15}
+    with pytest.raises(volspline.InvalidInput, match="coarse_cells"):
+        volspline.sweep_envelope(solid, coarse_cells=-1)
+    with pytest.raises(volspline.InvalidInput, match="refine"):
+        volspline.sweep_envelope(solid, coarse_cells=16, refine=0)
     volspline.write(tmp_path / "swept.json", [solid])
     (back,) = volspline.read(tmp_path / "swept.json")
     assert back.type == "swept_solid" and isinstance(back.spline, volspline.SweptSolid)
