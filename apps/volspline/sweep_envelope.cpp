@@ -78,6 +78,8 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                        {"split_edges", t.refinement_splits},
                        {"failed_edges", t.refinement_failed_edges},
                        {"unresolved_edges", t.refinement_unresolved_edges},
+                       {"edges_verified", t.refinement_edges_verified},
+                       {"edges_beyond_tolerance", t.refinement_edges_beyond_tolerance},
                        {"edges_above_tolerance", t.refinement_edges_above_tolerance},
                        {"largest_remaining_distance", t.refinement_largest_remaining}}},
                      {"seconds",
@@ -138,7 +140,7 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   }();
   TriangleMesh mesh;
   nlohmann::json stats = {{"objects", nlohmann::json::array()}};
-  bool open = false;
+  bool open = false, beyond_tolerance = false;
   std::size_t solids = 0;
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
     if (!is_swept_solid(model.objects[i])) continue;
@@ -167,12 +169,14 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
                 << (t.closed ? "closed" : "open") << (t.oriented ? ", oriented" : "")
                 << (t.self_intersection_free ? ", no self-intersections" : ", self-intersecting");
       if (!t.closed || !t.self_intersection_free) open = true;
+      if (t.refinement_edges_beyond_tolerance > 0) beyond_tolerance = true;
       if (options.coarse_cell_factor > 0) {
         if (t.grid_passes == 2)
           std::cout << "; the coarse grid was not kept (" << t.coarse_grid_rejected << ")";
         else
           std::cout << "; coarse grid refined toward the sheets: " << t.refinement_splits << " edges split, "
-                    << t.refinement_unresolved_edges << " unresolved (chamfered creases or failed Newton)";
+                    << t.refinement_edges_beyond_tolerance << " of " << t.refinement_edges_verified
+                    << " edges it could not refine farther than the tolerance from the boundary";
       }
     }
     std::cout << ", " << std::setprecision(3) << e.stats.seconds_total << " s\n";
@@ -193,6 +197,10 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   if (open)
     std::cerr << "volspline: warning: the trimmed envelope is not a closed, self-intersection-free surface (see above and "
                  "docs/envelopes.md, \"Limits\")\n";
+  if (beyond_tolerance)
+    std::cerr << "volspline: warning: with --coarse-cells some edges are farther than the tolerance from the boundary (creases or "
+                 "features the coarse grid missed; see above): without the option the envelope is within it (docs/envelopes.md, "
+                 "\"Refinement toward the sheets\")\n";
 }
 
 }  // namespace

@@ -115,6 +115,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   if (options.max_cells < 1) throw InvalidInput("expected a positive budget of cells", "max_cells");
   if (!(options.refinement_tolerance >= 0 && options.refinement_tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_tolerance < 0.5", "refinement_tolerance");
+  if (!(options.verification_distance >= 0 && options.verification_distance < 0.5))
+    throw InvalidInput("expected 0 <= verification_distance < 0.5", "verification_distance");
   if (!sheet_of_triangle.empty() && sheet_of_triangle.size() != superset.num_triangles())
     throw InvalidInput("expected one sheet number per triangle (" + std::to_string(superset.num_triangles()) + "), got " +
                            std::to_string(sheet_of_triangle.size()),
@@ -693,6 +695,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           }
         }
       }
+      // With refinement, a fan only around a point on a real crease: where the crossings' normals
+      // differ because a coarse cell spans a curved part of one smooth surface, the tangent planes
+      // meet off the surface and the plain triangles, refined, are better.
+      if (snap_creases && !on_crease) return false;
       // Each fan triangle faces the way of the disk (area-weighted) or of the cell's triangle it
       // replaces along the border (a sliver standing on the crease may face sideways): a fold of
       // the fan would be a self-intersection.
@@ -970,6 +976,42 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       stats.refinement_unresolved_edges = r.unresolved_edges;
       stats.refinement_edges_above_tolerance = r.edges_above_tolerance;
       stats.refinement_largest_remaining = r.largest_remaining_distance;
+      if (options.verification_distance > 0 && !r.unverified_edges.empty()) {
+        // Outward normals of the unverified edges: the sum of their faces' (the mesh is
+        // outward-oriented).
+        std::unordered_map<std::uint64_t, Eigen::Vector3d> edge_normal;
+        for (const auto& [p, q] : r.unverified_edges)
+          edge_normal.emplace((static_cast<std::uint64_t>(p) << 32) | static_cast<std::uint32_t>(q), Eigen::Vector3d::Zero());
+        for (const auto& t : result.triangles) {
+          const Eigen::Vector3d& a = result.positions[static_cast<std::size_t>(t[0])];
+          const Eigen::Vector3d n =
+              (result.positions[static_cast<std::size_t>(t[1])] - a).cross(result.positions[static_cast<std::size_t>(t[2])] - a);
+          for (int j = 0; j < 3; ++j) {
+            const int p = std::min(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]);
+            const int q = std::max(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]);
+            const auto it = edge_normal.find((static_cast<std::uint64_t>(p) << 32) | static_cast<std::uint32_t>(q));
+            if (it != edge_normal.end()) it->second += n;
+          }
+        }
+        std::vector<std::pair<std::uint64_t, Eigen::Vector3d>> checks(edge_normal.begin(), edge_normal.end());
+        std::atomic<std::int64_t> beyond{0};
+        const double distance = options.verification_distance * diagonal;
+        tbb::parallel_for(std::size_t{0}, checks.size(), [&](std::size_t i) {
+          const auto& [key, normal] = checks[i];
+          const Eigen::Vector3d middle = 0.5 * (result.positions[static_cast<std::size_t>(key >> 32)] +
+                                                result.positions[static_cast<std::size_t>(key & 0xffffffffu)]);
+          if (!(normal.norm() > 0)) {
+            ++beyond;
+            return;
+          }
+          const Eigen::Vector3d step = distance * normal.normalized();
+          queries += 2;
+          const std::optional<bool> out = inside(middle + step), in = inside(middle - step);
+          if (!out || !in || *out || !*in) ++beyond;
+        });
+        stats.refinement_edges_verified = static_cast<std::int64_t>(checks.size());
+        stats.refinement_edges_beyond_tolerance = beyond;
+      }
       stats.seconds_sheet_refinement = seconds_since(refine_start);
     }
     // Crossings inside a cell's disk that a crease fan replaced are used by no face: dropped.

@@ -401,11 +401,13 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
   }
   // The coarse grid sets the topology and the creases; refinement toward the sheets the
   // accuracy of the smooth parts. Kept when closed, oriented and free of self-intersections;
-  // edges it could not refine (chamfered creases, failed Newton) are counted in the statistics.
+  // edges it could not refine (chamfered creases, features between two crossings of a coarse
+  // cell, failed Newton) are checked by membership tests at the tolerance and counted.
   std::string rejected;
   if (options.coarse_cell_factor > 0 && contouring.refinement_tolerance > 0) {
     ImageContouringOptions coarse = contouring;
     coarse.cell_size = options.coarse_cell_factor * options.tolerance;
+    coarse.verification_distance = options.tolerance;
     TrimmedBoundary trimmed = contour_image_boundary(superset.mesh, superset.times, inside, coarse, exact, sheet_of_triangle, exact_from);
     const SupersetTrimmingStats& t = trimmed.stats;
     if (!t.closed || !t.oriented) rejected = "not closed and oriented";

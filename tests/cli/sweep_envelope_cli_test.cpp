@@ -69,8 +69,8 @@ TEST_F(SweepEnvelopeCli, ViewTurnsTheCameraOfThePicture) {
 
 // --coarse-cells: a ball of radius 1 along a segment of length 3 (the capsule, volume
 // 3 pi + 4/3 pi) contoured on a grid of 16 tolerances with its edges refined toward the sheets:
-// closed, oriented, free of self-intersections, the volume of the inscribed surface below the
-// capsule's and within 1e-3 of it.
+// closed, oriented, free of self-intersections, no unrefined edge beyond the tolerance, the
+// volume of the inscribed surface below the capsule's and within 1e-3 of it.
 TEST_F(SweepEnvelopeCli, ACoarseGridRefinedTowardTheSheetsKeepsTheCapsule) {
   const auto r = test_support::run_cli("sweep-envelope " + example("swept-translated-ball.json") + " -o " + path("c.ply") +
                                        " --coarse-cells 16 --stats " + path("s.json"),
@@ -84,6 +84,10 @@ TEST_F(SweepEnvelopeCli, ACoarseGridRefinedTowardTheSheetsKeepsTheCapsule) {
   EXPECT_TRUE(o["self_intersection_free"].get<bool>());
   EXPECT_EQ(o["trimming"]["grid_passes"].get<int>(), 1);
   EXPECT_GT(o["trimming"]["refinement"]["split_edges"].get<int>(), 0);
+  // The edges refinement could not split (at crease points, failed) are within the tolerance of
+  // the boundary by membership tests on either side of their midpoints.
+  EXPECT_EQ(o["trimming"]["refinement"]["edges_beyond_tolerance"].get<int>(), 0);
+  EXPECT_EQ(r.err.find("farther than the tolerance"), std::string::npos) << r.err;
   const double exact = 3 * std::numbers::pi + 4.0 / 3 * std::numbers::pi;
   EXPECT_LT(o["volume"].get<double>(), exact);
   EXPECT_NEAR(o["volume"].get<double>(), exact, 1e-3 * exact);

@@ -56,6 +56,12 @@ struct ImageContouringOptions {
   /// midpoints are within this distance (relative to the diagonal) of the sheet
   /// (extract/sheet_refinement.h); 0: no refinement.
   double refinement_tolerance = 0;
+  /// With refinement: every edge whose distance refinement did not establish (at a crease point,
+  /// across a crease, failed) is checked by membership tests at its midpoint, this far (relative
+  /// to the diagonal) along the outward normal on either side: outside beyond, inside before,
+  /// i.e. the boundary crosses that segment. Failures are counted
+  /// (`refinement_edges_beyond_tolerance`); 0: no check.
+  double verification_distance = 0;
   Progress* progress = nullptr;
 };
 

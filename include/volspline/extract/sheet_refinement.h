@@ -68,7 +68,7 @@ struct SheetRefinementOptions {
   /// With a membership test: edges between two sheets whose normals are farther apart (up to
   /// 80°: a seam on a curved surface, or a crease) are split too where the split point is on
   /// the boundary, i.e. `inside` answers differently at check_distance on either side of it
-  /// along its normal (the crease points of extract/image_contouring.h are checked alike).
+  /// along its normal.
   ImageMembershipTest inside;
   double check_distance = 0;
   /// With a membership test: an edge across a crease that no crease point resolves (a
@@ -91,6 +91,10 @@ struct SheetRefinementStats {
   /// Edges still above the tolerance when the rounds ran out, and the largest such distance.
   std::int64_t edges_above_tolerance = 0;
   double largest_remaining_distance = 0;
+  /// Edges of the result whose distance from the boundary refinement did not establish: at a
+  /// vertex on no sheet, between sheets it does not refine across, failed, or left above the
+  /// tolerance (vertex pairs; none of them is split afterwards, so they are edges of the result).
+  std::vector<std::array<int, 2>> unverified_edges;
 };
 
 /// Splits edges of `mesh` (one SheetVertex per vertex in `vertices`; both grow together, the

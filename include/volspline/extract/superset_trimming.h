@@ -64,7 +64,7 @@ struct SupersetTrimmingStats {
   /// the tolerance and the largest distance left.
   double refinement_tolerance = 0;
   std::int64_t refinement_rounds = 0, refinement_splits = 0, refinement_failed_edges = 0, refinement_edges_above_tolerance = 0,
-               refinement_unresolved_edges = 0;
+               refinement_unresolved_edges = 0, refinement_edges_verified = 0, refinement_edges_beyond_tolerance = 0;
   double refinement_largest_remaining = 0, seconds_sheet_refinement = 0;
   /// Contouring: cells (or tetrahedra) across a crease whose crease point could not be put on
   /// the curve where its two sheets meet (no fan, a corner of three sheets, or Newton failed):
