@@ -969,6 +969,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         if (!extra.empty()) out.extra.push_back(sheet_vertices[v].on[0].parameters[3]);
         out.source_vertex.push_back(sheet_vertices[v].source);
       }
+      stats.refinement_edges_verified = 0;
+      stats.refinement_edges_beyond_tolerance = 0;
       stats.refinement_tolerance = refinement.tolerance;
       stats.refinement_rounds = r.rounds;
       stats.refinement_splits = r.split_edges;
@@ -1047,13 +1049,17 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       for (const std::size_t o : face_origin) ++children[o];
     for (auto [f, g] : intersecting) {
       if (refine) {
-        // Faces refinement made (their face before it was split): no refinement at its corners.
+        // Faces refinement made (their face before it was split): no refinement at its corners;
+        // the fans and flips of their faces stay unless freezing changes nothing.
+        bool frozen = false;
         for (const std::size_t h : {f, g}) {
           const auto& parent = faces[face_origin[h]];
           if (children[face_origin[h]] > 1)
             for (int v : parent)
-              if (v < n_crossings) changed = unrefined_vertices.insert(v).second || changed;
+              if (v < n_crossings) frozen = unrefined_vertices.insert(v).second || frozen;
         }
+        changed = changed || frozen;
+        if (frozen) continue;
         f = face_origin[f];
         g = face_origin[g];
       }

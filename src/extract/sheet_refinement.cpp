@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "volspline/core/error.h"
+#include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
 
@@ -100,6 +101,9 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
   if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) throw InvalidInput("expected a positive tolerance", "tolerance");
   if (!(options.shortest_edge >= 0)) throw InvalidInput("expected shortest_edge >= 0", "shortest_edge");
   if (options.max_rounds < 0 || options.max_rounds > 60) throw InvalidInput("expected 0 to 60 rounds", "max_rounds");
+  validate_mesh(mesh);
+  if (options.inside && !(options.check_distance > 0))
+    throw InvalidInput("expected a positive check_distance with a membership test", "check_distance");
   SheetRefinementStats stats;
   std::vector<std::size_t> origin(mesh.num_triangles());
   for (std::size_t f = 0; f < origin.size(); ++f) origin[f] = f;
@@ -188,12 +192,16 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
             // Across a crease that no crease point resolves (a chamfer): counted where a chord
             // of that length between those normals may stand off the boundary by more than the
             // tolerance.
-            if (round == 0 && vp.on[0].sheet >= 0 && vq.on[0].sheet >= 0 && arc_deviation(p, q, vp.on[0].normal, vq.on[0].normal) > options.tolerance)
+            if (vp.on[0].sheet >= 0 && vq.on[0].sheet >= 0 && arc_deviation(p, q, vp.on[0].normal, vq.on[0].normal) > options.tolerance)
               ++stats.unresolved_edges;
             settled.insert(key);
             continue;
           }
-          if ((mesh.positions[static_cast<std::size_t>(p)] - mesh.positions[static_cast<std::size_t>(q)]).norm() <= options.shortest_edge) continue;
+          if ((mesh.positions[static_cast<std::size_t>(p)] - mesh.positions[static_cast<std::size_t>(q)]).norm() <= options.shortest_edge) {
+            settled.insert(key);
+            stats.unverified_edges.push_back({std::min(p, q), std::max(p, q)});
+            continue;
+          }
           EdgeSplit e;
           e.key = key;
           candidates.push_back(e);
@@ -321,7 +329,94 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
         }
       }
     }
+    // Faces split by their split edges (`at`: edge key -> new vertex), orientation kept; `pos`
+    // gives the positions, also of vertices not added yet.
+    const auto base = static_cast<int>(mesh.num_vertices());
+    std::vector<Eigen::Vector3d> added;
+    auto pos = [&](int v) -> const Eigen::Vector3d& {
+      return v < base ? mesh.positions[static_cast<std::size_t>(v)] : added[static_cast<std::size_t>(v - base)];
+    };
     std::unordered_map<std::uint64_t, int> split_at;
+    std::vector<std::array<int, 3>> triangles;
+    std::vector<int> parts;
+    std::vector<std::size_t> parent_face;
+    auto split_faces = [&] {
+      triangles.clear();
+      parts.clear();
+      parent_face.clear();
+      std::size_t parent = 0;
+      auto emit = [&](int a, int b, int c, int part) {
+        triangles.push_back({a, b, c});
+        parts.push_back(part);
+        parent_face.push_back(parent);
+      };
+      auto midpoint_of = [&](int p, int q) {
+        const auto it = split_at.find(refinement_edge_key(p, q));
+        return it == split_at.end() ? -1 : it->second;
+      };
+      for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+        std::array<int, 3> t = mesh.triangles[f];
+        const int part = mesh.parts[f];
+        parent = f;
+        std::array<int, 3> m{midpoint_of(t[0], t[1]), midpoint_of(t[1], t[2]), midpoint_of(t[2], t[0])};
+        const int splits = static_cast<int>(std::count_if(m.begin(), m.end(), [](int v) { return v >= 0; }));
+        if (splits == 0) {
+          emit(t[0], t[1], t[2], part);
+        } else if (splits == 3) {
+          emit(t[0], m[0], m[2], part);
+          emit(m[0], t[1], m[1], part);
+          emit(m[2], m[1], t[2], part);
+          emit(m[0], m[1], m[2], part);
+        } else if (splits == 1) {
+          while (m[0] < 0) {
+            std::rotate(t.begin(), t.begin() + 1, t.end());
+            std::rotate(m.begin(), m.begin() + 1, m.end());
+          }
+          emit(t[0], m[0], t[2], part);
+          emit(m[0], t[1], t[2], part);
+        } else {
+          // The unsplit edge last: (t2, t0).
+          while (m[2] >= 0) {
+            std::rotate(t.begin(), t.begin() + 1, t.end());
+            std::rotate(m.begin(), m.begin() + 1, m.end());
+          }
+          emit(m[0], t[1], m[1], part);
+          if ((pos(t[0]) - pos(m[1])).squaredNorm() <= (pos(m[0]) - pos(t[2])).squaredNorm()) {
+            emit(t[0], m[0], m[1], part);
+            emit(t[0], m[1], t[2], part);
+          } else {
+            emit(t[0], m[0], t[2], part);
+            emit(m[0], m[1], t[2], part);
+          }
+        }
+      }
+    };
+    // Faces split at two or three edges must not turn over either: the splits of a face with a
+    // child facing against it are refused, until none is left (each refusal removes splits).
+    auto normal_of = [&](const std::array<int, 3>& t) { return Eigen::Vector3d((pos(t[1]) - pos(t[0])).cross(pos(t[2]) - pos(t[0]))); };
+    for (int attempt = 0; attempt < 16; ++attempt) {
+      split_at.clear();
+      added.clear();
+      for (const EdgeSplit& e : candidates)
+        if (e.found && e.distance > options.tolerance) {
+          split_at.emplace(e.key, base + static_cast<int>(added.size()));
+          added.push_back(e.position);
+        }
+      if (split_at.empty()) break;
+      split_faces();
+      std::unordered_set<std::uint64_t> refused;
+      for (std::size_t c = 0; c < triangles.size(); ++c) {
+        const std::array<int, 3>& parent = mesh.triangles[parent_face[c]];
+        if (normal_of(triangles[c]).dot(normal_of(parent)) > 0) continue;
+        for (int j = 0; j < 3; ++j) {
+          const std::uint64_t key = refinement_edge_key(parent[static_cast<std::size_t>(j)], parent[static_cast<std::size_t>((j + 1) % 3)]);
+          if (split_at.count(key)) refused.insert(key);
+        }
+      }
+      if (refused.empty()) break;
+      for (EdgeSplit& e : candidates)
+        if (refused.count(e.key)) e.found = false;
+    }
     std::int64_t above = 0;
     double largest = 0;
     for (const EdgeSplit& e : candidates) {
@@ -351,66 +446,16 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
       break;
     }
     stats.rounds = round + 1;
+    // The vertices in the order the tentative ids gave them, then the faces as checked.
     for (const EdgeSplit& e : candidates) {
       if (!e.found || e.distance <= options.tolerance) continue;
-      split_at.emplace(e.key, mesh.add_vertex(e.position, e.vertex.on[0].parameters.head<3>()));
+      mesh.add_vertex(e.position, e.vertex.on[0].parameters.head<3>());
       vertices.push_back(e.vertex);
       ++stats.split_edges;
     }
-    // Faces split by their split edges, orientation kept.
-    std::vector<std::array<int, 3>> triangles;
-    std::vector<int> parts;
-    std::vector<std::size_t> new_origin;
-    triangles.reserve(mesh.triangles.size() * 2);
-    parts.reserve(mesh.triangles.size() * 2);
-    new_origin.reserve(mesh.triangles.size() * 2);
-    std::size_t parent = 0;
-    auto emit = [&](int a, int b, int c, int part) {
-      triangles.push_back({a, b, c});
-      parts.push_back(part);
-      new_origin.push_back(origin[parent]);
-    };
-    auto midpoint_of = [&](int p, int q) {
-      const auto it = split_at.find(refinement_edge_key(p, q));
-      return it == split_at.end() ? -1 : it->second;
-    };
-    auto position = [&](int v) -> const Eigen::Vector3d& { return mesh.positions[static_cast<std::size_t>(v)]; };
-    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-      std::array<int, 3> t = mesh.triangles[f];
-      const int part = mesh.parts[f];
-      parent = f;
-      std::array<int, 3> m{midpoint_of(t[0], t[1]), midpoint_of(t[1], t[2]), midpoint_of(t[2], t[0])};
-      const int splits = static_cast<int>(std::count_if(m.begin(), m.end(), [](int v) { return v >= 0; }));
-      if (splits == 0) {
-        emit(t[0], t[1], t[2], part);
-      } else if (splits == 3) {
-        emit(t[0], m[0], m[2], part);
-        emit(m[0], t[1], m[1], part);
-        emit(m[2], m[1], t[2], part);
-        emit(m[0], m[1], m[2], part);
-      } else if (splits == 1) {
-        while (m[0] < 0) {
-          std::rotate(t.begin(), t.begin() + 1, t.end());
-          std::rotate(m.begin(), m.begin() + 1, m.end());
-        }
-        emit(t[0], m[0], t[2], part);
-        emit(m[0], t[1], t[2], part);
-      } else {
-        // The unsplit edge last: (t2, t0).
-        while (m[2] >= 0) {
-          std::rotate(t.begin(), t.begin() + 1, t.end());
-          std::rotate(m.begin(), m.begin() + 1, m.end());
-        }
-        emit(m[0], t[1], m[1], part);
-        if ((position(t[0]) - position(m[1])).squaredNorm() <= (position(m[0]) - position(t[2])).squaredNorm()) {
-          emit(t[0], m[0], m[1], part);
-          emit(t[0], m[1], t[2], part);
-        } else {
-          emit(t[0], m[0], t[2], part);
-          emit(m[0], m[1], t[2], part);
-        }
-      }
-    }
+    split_faces();
+    std::vector<std::size_t> new_origin(parent_face.size());
+    for (std::size_t c = 0; c < parent_face.size(); ++c) new_origin[c] = origin[parent_face[c]];
     mesh.triangles = std::move(triangles);
     mesh.parts = std::move(parts);
     origin = std::move(new_origin);

@@ -78,8 +78,15 @@ TEST(SheetRefinement, AnInscribedOctahedronIsRefinedOntoTheSphereToTheTolerance)
     EXPECT_NEAR(mesh.positions[v].norm(), 1, 1e-12);
     EXPECT_NEAR((vertices[v].on[0].normal - mesh.positions[v]).norm(), 0, 1e-12);
   }
+  EXPECT_TRUE(stats.unverified_edges.empty());
   const EdgeStatistics edges = edge_statistics(mesh);
   EXPECT_TRUE(edges.closed_and_oriented());
+  // Every face faces outward (none turned over while consistent with its neighbours).
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d &a = mesh.positions[static_cast<std::size_t>(t[0])], &b = mesh.positions[static_cast<std::size_t>(t[1])],
+                          &c = mesh.positions[static_cast<std::size_t>(t[2])];
+    EXPECT_GT((b - a).cross(c - a).dot(a + b + c), 0);
+  }
   std::set<std::pair<int, int>> seen;
   double worst = 0;
   for (const auto& t : mesh.triangles)
@@ -108,7 +115,18 @@ TEST(SheetRefinement, EdgesAcrossTwoSheetsAtACreaseAreCountedNotSplit) {
   SheetRefinementOptions options;
   options.tolerance = 1e-2;
   const SheetRefinementStats stats = refine_to_sheets(mesh, vertices, crossing, options);
-  EXPECT_EQ(stats.unresolved_edges, 4);
+  // The four edges at the pole, and those the splits of the equator's edges add there.
+  EXPECT_GE(stats.unresolved_edges, 4);
+  ASSERT_FALSE(stats.unverified_edges.empty());
+  std::set<std::pair<int, int>> edges;
+  for (const auto& t : mesh.triangles)
+    for (int j = 0; j < 3; ++j)
+      edges.emplace(std::min(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]),
+                    std::max(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]));
+  for (const auto& [p, q] : stats.unverified_edges) {
+    EXPECT_TRUE(p == 5 || q == 5) << p << " " << q;
+    EXPECT_TRUE(edges.count({std::min(p, q), std::max(p, q)})) << p << " " << q;
+  }
   EXPECT_TRUE(edge_statistics(mesh).closed_and_oriented());
   for (const auto& x : mesh.positions) EXPECT_NEAR(x.norm(), 1, 1e-12);
   SheetRefinementOptions bad = options;
@@ -116,6 +134,13 @@ TEST(SheetRefinement, EdgesAcrossTwoSheetsAtACreaseAreCountedNotSplit) {
   EXPECT_THROW(refine_to_sheets(mesh, vertices, crossing, bad), InvalidInput);
   std::vector<SheetVertex> too_few(1);
   EXPECT_THROW(refine_to_sheets(mesh, too_few, crossing, options), InvalidInput);
+  TriangleMesh broken = mesh;
+  broken.triangles[0][0] = static_cast<int>(broken.num_vertices());  // a corner that is no vertex
+  std::vector<SheetVertex> copy = vertices;
+  EXPECT_THROW(refine_to_sheets(broken, copy, crossing, options), InvalidInput);
+  SheetRefinementOptions unchecked = options;
+  unchecked.inside = [](const Eigen::Vector3d& x) { return std::optional<bool>(x.norm() < 1); };
+  EXPECT_THROW(refine_to_sheets(mesh, copy, crossing, unchecked), InvalidInput);
 }
 
 }  // namespace
