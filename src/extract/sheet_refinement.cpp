@@ -394,7 +394,9 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     // Faces split at two or three edges must not turn over either: the splits of a face with a
     // child facing against it are refused, until none is left (each refusal removes splits).
     auto normal_of = [&](const std::array<int, 3>& t) { return Eigen::Vector3d((pos(t[1]) - pos(t[0])).cross(pos(t[2]) - pos(t[0]))); };
+    bool faces_checked = false;  // `triangles` holds the faces split by exactly the splits left
     for (int attempt = 0; attempt < 16; ++attempt) {
+      faces_checked = false;
       split_at.clear();
       added.clear();
       for (const EdgeSplit& e : candidates)
@@ -413,7 +415,10 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
           if (split_at.count(key)) refused.insert(key);
         }
       }
-      if (refused.empty()) break;
+      if (refused.empty()) {
+        faces_checked = true;
+        break;
+      }
       for (EdgeSplit& e : candidates)
         if (refused.count(e.key)) e.found = false;
     }
@@ -453,7 +458,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
       vertices.push_back(e.vertex);
       ++stats.split_edges;
     }
-    split_faces();
+    if (!faces_checked) split_faces();
     std::vector<std::size_t> new_origin(parent_face.size());
     for (std::size_t c = 0; c < parent_face.size(); ++c) new_origin[c] = origin[parent_face[c]];
     mesh.triangles = std::move(triangles);

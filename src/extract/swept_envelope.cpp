@@ -341,35 +341,9 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
   }
   ImageContouringOptions contouring = options.contouring;
   contouring.cell_size = options.contour_cell_factor * options.tolerance;
-  contouring.refinement_tolerance = options.refinement_factor * options.tolerance;
   contouring.superset_error = std::min(0.25, 2 * options.tolerance);
   if (!contouring.progress) contouring.progress = options.progress;
-  // Vertices onto the true sheets: Newton from the (u, v, w, t) interpolated in the superset
-  // triangle, on the sheet's own equations.
-  const SupersetSheetCrossing exact = [&](std::size_t triangle, const Eigen::Vector3d& barycentric, double lambda,
-                                          const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::optional<SheetCrossing> {
-    const auto& tri = superset.mesh.triangles[triangle];
-    std::array<double, 4> p{};
-    for (int j = 0; j < 3; ++j) {
-      const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
-      for (int k = 0; k < 3; ++k) p[static_cast<std::size_t>(k)] += barycentric[j] * superset.mesh.parameters[v][k];
-      p[3] += barycentric[j] * superset.times[v];
-    }
-    // Fixed parameters exactly at the first corner's value (a domain bound).
-    const SupersetSheet& sheet = superset.sheets[triangle];
-    const auto v0 = static_cast<std::size_t>(tri[0]);
-    for (int d = 0; d < 4; ++d)
-      if ((sheet.fixed >> d) & 1) p[static_cast<std::size_t>(d)] = d < 3 ? superset.mesh.parameters[v0][d] : superset.times[v0];
-    const auto& s = patches[static_cast<std::size_t>(superset.patches[v0])];
-    const auto c = sheet_line_crossing<4>(s, sheet, p, lambda, a, b);
-    if (!c) return std::nullopt;
-    SheetCrossing x;
-    x.lambda = c->lambda;
-    x.parameters = Eigen::Vector3d(c->parameter[0], c->parameter[1], c->parameter[2]);
-    x.extra = c->parameter[3];
-    x.normal = c->normal;
-    return x;
-  };
+  // Vertices onto the true sheets: Newton on the sheet's own equations from given parameters.
   const SheetCrossingFrom exact_from = [&](std::size_t triangle, const Eigen::Vector4d& start, double lambda, const Eigen::Vector3d& a,
                                            const Eigen::Vector3d& b) -> std::optional<SheetCrossing> {
     const auto v0 = static_cast<std::size_t>(superset.mesh.triangles[triangle][0]);
@@ -383,6 +357,23 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
     x.extra = c->parameter[3];
     x.normal = c->normal;
     return x;
+  };
+  // ... from the (u, v, w, t) interpolated in the superset triangle, its fixed parameters exactly
+  // at the first corner's value (a domain bound).
+  const SupersetSheetCrossing exact = [&](std::size_t triangle, const Eigen::Vector3d& barycentric, double lambda,
+                                          const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::optional<SheetCrossing> {
+    const auto& tri = superset.mesh.triangles[triangle];
+    Eigen::Vector4d p = Eigen::Vector4d::Zero();
+    for (int j = 0; j < 3; ++j) {
+      const auto v = static_cast<std::size_t>(tri[static_cast<std::size_t>(j)]);
+      p.head<3>() += barycentric[j] * superset.mesh.parameters[v];
+      p[3] += barycentric[j] * superset.times[v];
+    }
+    const SupersetSheet& sheet = superset.sheets[triangle];
+    const auto v0 = static_cast<std::size_t>(tri[0]);
+    for (int d = 0; d < 4; ++d)
+      if ((sheet.fixed >> d) & 1) p[d] = d < 3 ? superset.mesh.parameters[v0][d] : superset.times[v0];
+    return exact_from(triangle, p, lambda, a, b);
   };
   // One number per sheet: the patch, the fixed parameters and the bounds they are fixed at, fold.
   std::vector<int> sheet_of_triangle;
@@ -404,9 +395,10 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
   // edges it could not refine (chamfered creases, features between two crossings of a coarse
   // cell, failed Newton) are checked by membership tests at the tolerance and counted.
   std::string rejected;
-  if (options.coarse_cell_factor > 0 && contouring.refinement_tolerance > 0) {
+  if (options.coarse_cell_factor > 0 && options.refinement_factor > 0) {
     ImageContouringOptions coarse = contouring;
     coarse.cell_size = options.coarse_cell_factor * options.tolerance;
+    coarse.refinement_tolerance = options.refinement_factor * options.tolerance;
     coarse.verification_distance = options.tolerance;
     TrimmedBoundary trimmed = contour_image_boundary(superset.mesh, superset.times, inside, coarse, exact, sheet_of_triangle, exact_from);
     const SupersetTrimmingStats& t = trimmed.stats;
@@ -414,8 +406,7 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
     else if (!t.self_intersection_free) rejected = std::to_string(t.self_intersecting_pairs) + " self-intersecting pairs";
     if (rejected.empty()) return finish(std::move(trimmed), EnvelopeTrimming::Contouring);
   }
-  // The fine grid as before refinement existed: its chords are within the tolerance already.
-  contouring.refinement_tolerance = 0;
+  // The fine grid, unrefined: its chords are within the tolerance already.
   TrimmedBoundary trimmed = contour_image_boundary(superset.mesh, superset.times, inside, contouring, exact, sheet_of_triangle, exact_from);
   if (!rejected.empty()) {
     trimmed.stats.grid_passes = 2;
