@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include "volspline/analysis/cone_bounds.h"
 #include "volspline/analysis/jacobian_determinant.h"
@@ -69,6 +72,91 @@ Scaled det4(const Row& p, const Row& a, const std::array<std::array<Scaled, 4>, 
     scaled_product_add(p[j], minor, (j % 2 == 0) ? 1.0 : -1.0, d);
   }
   return d;
+}
+
+// Wolfe's minimum-norm-point algorithm (Wolfe 1976) on the unit vectors u_i = c_i / |c_i|: the
+// point of their convex hull nearest the origin is, when it is not the origin, the direction
+// that separates them best (x . u_i >= |x|^2 for all i). Each major step adds the vector most
+// opposed to the current point; the minor steps keep the point in the relative interior of the
+// hull of the active set (at most five vectors in R^4). `accept(x)` tests a candidate on the
+// unnormalised coefficients and stops the search as soon as one proves; the search gives up
+// when the point reaches the origin (the hull contains it: no certificate exists) or after a
+// fixed number of steps. Rounding can only cost a certificate, never make a wrong one: whatever
+// direction is returned, the caller's test decides.
+template <class Accept>
+bool minimum_norm_separation(const double* c, const std::vector<double>& inverse_norm, Accept accept) {
+  const std::size_t n = inverse_norm.size();
+  using Vec4 = Eigen::Vector4d;
+  auto unit = [&](std::size_t i) { return Vec4(Eigen::Map<const Vec4>(c + 4 * i) * inverse_norm[i]); };
+  std::vector<std::size_t> active{0};
+  std::vector<double> weight{1.0};
+  Vec4 x = unit(0);
+  constexpr int kMajorSteps = 48;
+  constexpr double kOrigin = 1e-9;
+  for (int major = 0; major < kMajorSteps; ++major) {
+    if (accept(x)) return true;
+    if (x.squaredNorm() < kOrigin * kOrigin) return false;
+    std::size_t worst = 0;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double dot = x.dot(Eigen::Map<const Vec4>(c + 4 * i)) * inverse_norm[i];
+      if (dot < lowest) {
+        lowest = dot;
+        worst = i;
+      }
+    }
+    // x is the minimum-norm point of the whole hull: the hull misses the origin only by less
+    // than the rounding, or accept() refused x for its margins.
+    if (lowest >= x.squaredNorm() * (1 - 1e-12)) return false;
+    if (std::find(active.begin(), active.end(), worst) != active.end()) return false;
+    active.push_back(worst);
+    weight.push_back(0.0);
+    for (int minor = 0; minor < 8; ++minor) {
+      // The affine hull's minimum-norm point: min |U a|^2 with sum a = 1 (a KKT system).
+      const Eigen::Index m = static_cast<Eigen::Index>(active.size());
+      Eigen::MatrixXd u(4, m);
+      for (Eigen::Index k = 0; k < m; ++k) u.col(k) = unit(active[static_cast<std::size_t>(k)]);
+      Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(m + 1, m + 1);
+      kkt.topLeftCorner(m, m) = u.transpose() * u;
+      kkt.block(0, m, m, 1).setOnes();
+      kkt.block(m, 0, 1, m).setOnes();
+      Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m + 1);
+      rhs(m) = 1;
+      const Eigen::VectorXd solution = kkt.completeOrthogonalDecomposition().solve(rhs);
+      const Eigen::VectorXd a = solution.head(m);
+      if (!a.allFinite()) return false;
+      if ((a.array() > 1e-14).all()) {
+        x = u * a;
+        for (Eigen::Index k = 0; k < m; ++k) weight[static_cast<std::size_t>(k)] = a(k);
+        break;
+      }
+      // Step from the current weights towards a as far as the weights stay non-negative, and drop
+      // the vectors whose weight reaches zero.
+      double theta = 1;
+      for (Eigen::Index k = 0; k < m; ++k) {
+        const double w = weight[static_cast<std::size_t>(k)];
+        if (a(k) <= 1e-14 && w - a(k) > 0) theta = std::min(theta, w / (w - a(k)));
+      }
+      std::vector<std::size_t> kept_active;
+      std::vector<double> kept_weight;
+      x.setZero();
+      for (Eigen::Index k = 0; k < m; ++k) {
+        const double w = theta * a(k) + (1 - theta) * weight[static_cast<std::size_t>(k)];
+        if (w > 1e-14) {
+          kept_active.push_back(active[static_cast<std::size_t>(k)]);
+          kept_weight.push_back(w);
+          x += w * u.col(k);
+        }
+      }
+      if (kept_active.empty()) return false;
+      active = std::move(kept_active);
+      weight = std::move(kept_weight);
+      const double total = std::accumulate(weight.begin(), weight.end(), 0.0);
+      for (double& w : weight) w /= total;
+      x /= total;
+    }
+  }
+  return accept(x);
 }
 
 }  // namespace
@@ -192,6 +280,16 @@ RankCertificate bernstein_rank_certificate(const BernsteinTensor<4>& minors, con
     if (!(norm > 0)) norm = 1;
     for (std::size_t k = 0; k < 4; ++k) d[k] = d[k] / norm + c[4 * worst + k] * inverse_norm[worst];
   }
+  // The cheap tries failed: the best-separating direction, when the hull misses the origin.
+  const auto proves = [&](const Eigen::Vector4d& x) {
+    double slack = 0;
+    for (std::size_t k = 0; k < 4; ++k) slack += std::abs(x[static_cast<Eigen::Index>(k)]) * margins[k];
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(x.dot(Eigen::Map<const Eigen::Vector4d>(c + 4 * i)) > slack)) return false;
+    }
+    return true;
+  };
+  if (minimum_norm_separation(c, inverse_norm, proves)) return RankCertificate::Hull;
   return RankCertificate::None;
 }
 

@@ -91,6 +91,51 @@ TEST(SubJacobians, SignCertificateForAStrictSignAndHullForASeparatedSet) {
   EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::Hull);
 }
 
+// Coefficient 4-vectors all within a thin slab on the positive side of a hidden hyperplane
+// d* . c = 0 (d* . c_i between 0.01 and 0.02 of |c_i|), spread widely within it: their hull
+// misses the origin, yet neither their mean direction nor a few perceptron steps need separate
+// them. The hull certificate must find a direction for every such set. The same sets with one
+// more vector, minus a positive combination of the others, contain the origin in their hull:
+// no certificate may be given for them.
+TEST(SubJacobians, HullCertificateIsFoundWheneverTheHullMissesTheOriginAndNeverWhenItHoldsIt) {
+  std::mt19937 random(20261203);
+  std::uniform_real_distribution<double> unit(-1, 1), slab(0.01, 0.02), weight(0.1, 1);
+  const std::array<double, 4> margins{1e-14, 1e-14, 1e-14, 1e-14};
+  int found = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    Eigen::Vector4d hidden(unit(random), unit(random), unit(random), unit(random));
+    hidden.normalize();
+    // The vectors: a lopsided cloud (most near one direction of the slab, a few far off) so that
+    // their mean is a poor separator.
+    const Eigen::Vector4d a = Eigen::Vector4d(unit(random), unit(random), unit(random), unit(random)),
+                          b = Eigen::Vector4d(unit(random), unit(random), unit(random), unit(random));
+    BernsteinTensor<4> minors({3, 3, 1, 1}, 4);
+    const std::size_t n = minors.count();
+    std::vector<Eigen::Vector4d> vectors;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector4d centre = i < n - 3 ? Eigen::Vector4d(3 * a) : Eigen::Vector4d(-2 * a + static_cast<double>(i - (n - 3)) * b);
+      Eigen::Vector4d v = centre + 0.3 * Eigen::Vector4d(unit(random), unit(random), unit(random), unit(random));
+      v -= hidden.dot(v) * hidden;
+      if (v.norm() < 1e-3) v = Eigen::Vector4d(1, 0, 0, 0) - hidden(0) * hidden;
+      v += slab(random) * v.norm() * hidden;
+      vectors.push_back(v);
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      for (Eigen::Index k = 0; k < 4; ++k) minors.coefficients[4 * i + static_cast<std::size_t>(k)] = vectors[i](k);
+    const RankCertificate separated = bernstein_rank_certificate(minors, margins);
+    // Sign and NoFold are proofs too (one component happens to keep a sign); count Hull alone.
+    EXPECT_NE(separated, RankCertificate::None) << "trial " << trial;
+    found += separated == RankCertificate::Hull;
+    // Replace the last vector by minus a positive combination of the others: the origin is then
+    // a convex combination of all of them.
+    Eigen::Vector4d combination = Eigen::Vector4d::Zero();
+    for (std::size_t i = 0; i + 1 < n; ++i) combination += weight(random) * vectors[i];
+    for (Eigen::Index k = 0; k < 4; ++k) minors.coefficients[4 * (n - 1) + static_cast<std::size_t>(k)] = -combination(k);
+    EXPECT_EQ(bernstein_rank_certificate(minors, margins), RankCertificate::None) << "trial " << trial;
+  }
+  EXPECT_GT(found, 150);
+}
+
 TEST(SubJacobians, ConeCertificateProvesAnUnfoldedGenerator) {
   const auto map = test_support::translated_generator({{1.0, 0, 0, 1}, {0.2, 1, 1, 0}}, {1, 1, 1}, {0.3, 0.2, 1.0});
   BernsteinTensor<4> geometry;

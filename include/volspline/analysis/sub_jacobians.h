@@ -65,7 +65,10 @@ enum class RankCertificate {
 /// coefficients of component k (a coefficient counts as positive only when > margins[k], and a
 /// direction d proves only when d . c_i > sum_k |d_k| margins[k]). The separating direction is
 /// looked for by cheap tries (the mean of the normalised c_i, then perceptron steps towards the
-/// worst c_i); any direction found is a sound certificate, and not finding one proves nothing.
+/// worst c_i), then as the point of the normalised c_i's convex hull nearest the origin
+/// (Wolfe's minimum-norm-point algorithm), which separates them whenever their hull misses the
+/// origin by more than the margins and rounding; any direction found is a sound certificate,
+/// since the test above decides.
 RankCertificate bernstein_rank_certificate(const BernsteinTensor<4>& minors, const std::array<double, 4>& margins);
 
 /// The cone certificate for a cell of a polynomial map whose points (x, y, z) are `geometry`
