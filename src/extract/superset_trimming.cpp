@@ -307,7 +307,7 @@ void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& s
     Mesh check;
     PMP::polygon_soup_to_polygon_mesh(check_points, rt, check);
     std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
-    PMP::self_intersections(check.faces(), check, std::back_inserter(pairs));
+    PMP::self_intersections<CGAL::Parallel_if_available_tag>(check.faces(), check, std::back_inserter(pairs));
     stats.self_intersecting_pairs = static_cast<std::int64_t>(pairs.size());
     stats.self_intersection_free = pairs.empty();
     // The soup's polygons became the mesh's faces in order (orienting reverses, never reorders).

@@ -164,23 +164,23 @@ void divide_by_weight(const detail::DerivativeTable<D>& table, int k, Homogeneou
 thread_local std::vector<double> tl_scratch;
 thread_local std::vector<double> tl_grid_scratch[3];
 
-// Sum factorisation of one 3-variate block with compile-time sizes: N = p + 1 in every
-// direction, C numbers per coefficient. Contracting w first leaves rows of N*C contiguous
+// Sum factorisation of one 3-variate block with compile-time sizes: N0, N1, N2 = p + 1 along
+// u, v, w, C numbers per coefficient. Contracting w first leaves rows of N0*C contiguous
 // numbers, which the compiler unrolls and vectorises. Computes the value and, for order 1, the
 // three first partials in derivative_multi_indices order.
-template <int N, int C, int Order>
+template <int N0, int N1, int N2, int C, int Order>
 void contract_volume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff_t sw, const double* Bu, const double* Bv,
                            const double* Bw, double* results) {
-  constexpr int L = N * C;
-  double w0[N][L], w1[N][L];
-  for (int j = 0; j < N; ++j) {
+  constexpr int L = N0 * C;
+  double w0[N1][L], w1[N1][L];
+  for (int j = 0; j < N1; ++j) {
     const double* row = G + j * sv;
     for (int x = 0; x < L; ++x) {
       double a = 0.0, b = 0.0;
-      for (int k = 0; k < N; ++k) {
+      for (int k = 0; k < N2; ++k) {
         const double g = row[k * sw + x];
         a += Bw[k] * g;
-        if constexpr (Order) b += Bw[N + k] * g;
+        if constexpr (Order) b += Bw[N2 + k] * g;
       }
       w0[j][x] = a;
       w1[j][x] = b;
@@ -189,10 +189,10 @@ void contract_volume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff_t sw
   double v00[L], v10[L], v01[L];
   for (int x = 0; x < L; ++x) {
     double a = 0.0, b = 0.0, c = 0.0;
-    for (int j = 0; j < N; ++j) {
+    for (int j = 0; j < N1; ++j) {
       a += Bv[j] * w0[j][x];
       if constexpr (Order) {
-        b += Bv[N + j] * w0[j][x];
+        b += Bv[N1 + j] * w0[j][x];
         c += Bv[j] * w1[j][x];
       }
     }
@@ -202,10 +202,10 @@ void contract_volume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff_t sw
   }
   for (int c = 0; c < C; ++c) {
     double value = 0.0, du = 0.0, dv = 0.0, dw = 0.0;
-    for (int i = 0; i < N; ++i) {
+    for (int i = 0; i < N0; ++i) {
       value += Bu[i] * v00[i * C + c];
       if constexpr (Order) {
-        du += Bu[N + i] * v00[i * C + c];
+        du += Bu[N0 + i] * v00[i * C + c];
         dv += Bu[i] * v10[i * C + c];
         dw += Bu[i] * v01[i * C + c];
       }
@@ -219,25 +219,74 @@ void contract_volume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff_t sw
   }
 }
 
-using FixedKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, const double*, const double*, const double*,
-                             double*);
-
-template <int Order>
-FixedKernel fixed_volume_kernel_of_order(int n, int c) {
-  if (c == 3) {
-    if (n == 2) return contract_volume_fixed<2, 3, Order>;
-    if (n == 3) return contract_volume_fixed<3, 3, Order>;
-    if (n == 4) return contract_volume_fixed<4, 3, Order>;
-  } else if (c == 4) {
-    if (n == 2) return contract_volume_fixed<2, 4, Order>;
-    if (n == 3) return contract_volume_fixed<3, 4, Order>;
-    if (n == 4) return contract_volume_fixed<4, 4, Order>;
-  }
-  return nullptr;
+// A 4-variate block (a swept solid s(u, v, w, t), Conkey–Joy 2000 eq. 1, whose Newton solves
+// evaluate it millions of times while trimming): the t direction (the largest stride) is
+// contracted first into contiguous 3-variate blocks, the value's and, for order 1, d/dt's,
+// which the fixed volume kernel then finishes. Results in derivative_multi_indices order:
+// value, d/du, d/dv, d/dw, d/dt.
+template <int N0, int N1, int N2, int C, int Order>
+void contract_hypervolume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff_t sw, std::ptrdiff_t st, int nt, const double* Bu,
+                                const double* Bv, const double* Bw, const double* Bt, double* results) {
+  constexpr int L = N0 * C;
+  double t0[N2][N1][L], t1[N2][N1][L];
+  for (int k = 0; k < N2; ++k)
+    for (int j = 0; j < N1; ++j) {
+      const double* row = G + k * sw + j * sv;
+      for (int x = 0; x < L; ++x) {
+        double a = 0.0, b = 0.0;
+        for (int l = 0; l < nt; ++l) {
+          const double g = row[l * st + x];
+          a += Bt[l] * g;
+          if constexpr (Order) b += Bt[nt + l] * g;
+        }
+        t0[k][j][x] = a;
+        if constexpr (Order) t1[k][j][x] = b;
+      }
+    }
+  contract_volume_fixed<N0, N1, N2, C, Order>(&t0[0][0][0], L, N1 * L, Bu, Bv, Bw, results);
+  if constexpr (Order) contract_volume_fixed<N0, N1, N2, C, 0>(&t1[0][0][0], L, N1 * L, Bu, Bv, Bw, results + 4 * C);
 }
 
-FixedKernel fixed_volume_kernel(int n, int c, int order) {
-  return order == 0 ? fixed_volume_kernel_of_order<0>(n, c) : fixed_volume_kernel_of_order<1>(n, c);
+// The fixed-size kernels for n_u, n_v, n_w in {2, 3, 4} (degrees 1 to 3: every primitive and
+// sweep of the library) and 3 or 4 numbers per coefficient; nullptr otherwise (the general
+// recurrence then runs).
+using FixedKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, const double*, const double*, const double*,
+                             double*);
+using FixedHyperKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, std::ptrdiff_t, int, const double*, const double*,
+                                  const double*, const double*, double*);
+
+template <int N0, int N1, int N2, int C, int Order>
+constexpr std::pair<FixedKernel, FixedHyperKernel> fixed_pair() {
+  return {contract_volume_fixed<N0, N1, N2, C, Order>, contract_hypervolume_fixed<N0, N1, N2, C, Order>};
+}
+
+template <int C, int Order, int N0, int N1>
+std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_n2(int n2) {
+  if (n2 == 2) return fixed_pair<N0, N1, 2, C, Order>();
+  if (n2 == 3) return fixed_pair<N0, N1, 3, C, Order>();
+  return fixed_pair<N0, N1, 4, C, Order>();
+}
+
+template <int C, int Order, int N0>
+std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_n1(int n1, int n2) {
+  if (n1 == 2) return fixed_kernels_n2<C, Order, N0, 2>(n2);
+  if (n1 == 3) return fixed_kernels_n2<C, Order, N0, 3>(n2);
+  return fixed_kernels_n2<C, Order, N0, 4>(n2);
+}
+
+template <int C, int Order>
+std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_of(const std::array<int, 3>& n) {
+  if (n[0] == 2) return fixed_kernels_n1<C, Order, 2>(n[1], n[2]);
+  if (n[0] == 3) return fixed_kernels_n1<C, Order, 3>(n[1], n[2]);
+  return fixed_kernels_n1<C, Order, 4>(n[1], n[2]);
+}
+
+std::pair<FixedKernel, FixedHyperKernel> fixed_kernels(const std::array<int, 3>& n, int c, int order) {
+  if (order > 1 || (c != 3 && c != 4)) return {nullptr, nullptr};
+  for (int x : n)
+    if (x < 2 || x > 4) return {nullptr, nullptr};
+  if (c == 3) return order == 0 ? fixed_kernels_of<3, 0>(n) : fixed_kernels_of<3, 1>(n);
+  return order == 0 ? fixed_kernels_of<4, 0>(n) : fixed_kernels_of<4, 1>(n);
 }
 
 }  // namespace
@@ -311,11 +360,16 @@ void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double
   std::fill(results, results + n_alpha * static_cast<std::size_t>(C), 0.0);
 
   FixedKernel fixed = nullptr;
-  if constexpr (D == 3) {
-    if (order <= 1 && n[0] == n[1] && n[1] == n[2]) fixed = fixed_volume_kernel(n[0], C, order);
-  }
+  FixedHyperKernel fixed_hyper = nullptr;
+  if constexpr (D == 3) fixed = fixed_kernels({n[0], n[1], n[2]}, C, order).first;
+  if constexpr (D == 4) fixed_hyper = fixed_kernels({n[0], n[1], n[2]}, C, order).second;
   if (fixed) {
     fixed(evaluation_coefficients().data() + base, stride[1], stride[2], basis[0], basis[1], basis[2], results);
+  } else if (fixed_hyper) {
+    if constexpr (D == 4) {
+      fixed_hyper(evaluation_coefficients().data() + base, stride[1], stride[2], stride[3], n[3], basis[0], basis[1], basis[2],
+                  basis[3], results);
+    }
   } else {
     // Row offsets of the block in global memory for the first stage (direction D-1): the rows
     // run along direction 0 and are contiguous (n_0 * C numbers).

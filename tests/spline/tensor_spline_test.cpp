@@ -150,6 +150,52 @@ TEST(TensorSpline, GridEvaluationEqualsScatteredEvaluation) {
   check(random_spline<4>(rng, {1, 2, 1, 2}, 2, 2, false));
 }
 
+// Value and first partials of 4-variate splines of degrees 1 to 3 in u, v, w (the fixed-size
+// path that swept solids take) against the grid evaluation's general recurrence at the same
+// points, and against finite differences: polynomial and rational, three and four numbers per
+// control point, every degree the fixed path covers and one it does not.
+TEST(TensorSpline, FourVariateValueAndFirstPartialsEqualTheGeneralRecurrence) {
+  std::mt19937 rng(15);
+  auto check = [&](const TensorSpline<4>& s) {
+    check_derivatives(s, rng);
+    std::array<std::vector<double>, 4> samples;
+    for (int d = 0; d < 4; ++d) {
+      std::uniform_real_distribution<double> at(s.domain_min(d), s.domain_max(d));
+      for (int i = 0; i < 3; ++i) samples[static_cast<std::size_t>(d)].push_back(at(rng));
+      samples[static_cast<std::size_t>(d)].push_back(s.knot_vector(d).breakpoints()[1]);
+    }
+    for (int order = 0; order <= 1; ++order) {
+      const auto grid = s.evaluate_grid(samples, order);
+      const std::size_t n_alpha = derivative_multi_indices<4>(order).size(), points = 256;
+      const int k = s.dimension();
+      for (std::size_t pt = 0; pt < points; ++pt) {
+        std::array<double, 4> t{};
+        std::size_t rest = pt;
+        for (std::size_t d = 0; d < 4; ++d) {
+          t[d] = samples[d][rest % 4];
+          rest /= 4;
+        }
+        const auto single = s.evaluate_derivatives(t, order);
+        for (std::size_t a = 0; a < n_alpha; ++a)
+          for (int c = 0; c < k; ++c) {
+            const double g = grid[(a * points + pt) * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
+            const double x = single[a * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
+            ASSERT_NEAR(g, x, 1e-12 * (1 + std::abs(x))) << "order " << order << " point " << pt << " alpha " << a;
+          }
+      }
+    }
+  };
+  for (int p = 1; p <= 3; ++p) {
+    check(random_spline<4>(rng, {p, p, p, 1}, 2, 3, false));
+    check(random_spline<4>(rng, {p, p, p, 2}, 2, 3, true));
+    check(random_spline<4>(rng, {p, p, p, 3}, 3, 3, true, false));
+  }
+  check(random_spline<4>(rng, {1, 2, 2, 1}, 2, 4, true));  // the ball and torus sweeps' degrees
+  check(random_spline<4>(rng, {3, 1, 2, 2}, 2, 3, false));
+  check(random_spline<4>(rng, {2, 2, 2, 7}, 1, 3, false));
+  check(random_spline<4>(rng, {4, 4, 4, 2}, 1, 3, true));
+}
+
 TEST(TensorSpline, ParallelBatchEqualsSingleEvaluation) {
   std::mt19937 rng(14);
   const auto s = random_spline<3>(rng, {3, 2, 3}, 3, 3, true, false, 2, true);
