@@ -165,14 +165,11 @@ endif()
 if(VOLSPLINE_WITH_CGAL)
   volspline_add_component(cgal)
   target_link_libraries(volspline_cgal PUBLIC volspline_core PRIVATE CGAL::CGAL)
-  # CGAL's oneTBB support (CGAL_LINKED_WITH_TBB): the self-intersection check of a trimmed
-  # boundary runs with CGAL::Parallel_if_available_tag. Every other CGAL call here keeps its
-  # sequential default.
-  include(CGAL_TBB_support)
-  if(NOT TARGET CGAL::TBB_support)
-    message(FATAL_ERROR "CGAL's TBB support was not found (libtbb-dev): scripts/install-deps installs it")
-  endif()
-  target_link_libraries(volspline_cgal PRIVATE CGAL::TBB_support)
+  # CGAL's oneTBB support: the self-intersection check of a trimmed boundary runs with
+  # CGAL::Parallel_if_available_tag (every other CGAL call here keeps its sequential default).
+  # The definition that CGAL::TBB_support would carry, set privately so that the installed
+  # package does not need that target; oneTBB itself comes with volspline::core.
+  target_compile_definitions(volspline_cgal PRIVATE CGAL_LINKED_WITH_TBB)
 endif()
 if(VOLSPLINE_WITH_VTK)
   volspline_add_component(vtk)

@@ -63,6 +63,7 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                      {"grid_cell_size", t.cell_size},
                      {"grid_cells", t.grid_cells},
                      {"grid_corners", t.grid_corners},
+                     {"grid_corners_inferred", t.grid_corners_inferred},
                      {"crossings_off_superset", t.crossings_off_superset},
                      {"crossings_on_sheets", t.crossings_on_sheets},
                      {"crossings_after_bisection", t.crossings_after_bisection},

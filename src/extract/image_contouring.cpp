@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <numbers>
 #include <set>
 #include <tuple>
@@ -186,6 +187,20 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   cell_list.clear();
   stats.seconds_refine = seconds_since(grid_start);
 
+  // The superset's triangles of nonzero area in a tree: the crossings below, and the edges no
+  // sheet comes near in the classification.
+  std::vector<ContourTriangle> proper_triangles;
+  std::vector<std::size_t> proper_source;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (!triangles[t].is_degenerate()) {
+      proper_triangles.push_back(triangles[t]);
+      proper_source.push_back(t);
+    }
+  if (proper_triangles.empty()) throw InvalidInput("the superset has no triangle of nonzero area", "superset");
+  ContourTree tree(proper_triangles.cbegin(), proper_triangles.cend());
+  tree.build();
+  tree.accelerate_distance_queries();
+
   // Classification of corners, growing the region across faces whose corners disagree.
   const auto classify_start = ContourClock::now();
   if (options.progress) options.progress->begin_phase("contouring classification");
@@ -201,6 +216,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     return grid.key(i[0] + (c & 1), i[1] + ((c >> 1) & 1), i[2] + ((c >> 2) & 1));
   };
   std::vector<std::uint64_t> frontier(cells.begin(), cells.end());
+  std::int64_t inferred = 0;
   while (!frontier.empty()) {
     std::vector<std::uint64_t> fresh;
     for (std::uint64_t cell : frontier)
@@ -213,7 +229,103 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     // starts next door.
     std::sort(fresh.begin(), fresh.end());
     std::vector<char> values(fresh.size());
-    tbb::parallel_for(std::size_t{0}, fresh.size(), [&](std::size_t q) { values[q] = is_inside(grid.point(fresh[q])) ? 1 : 0; });
+    if (!options.infer_labels) {
+      tbb::parallel_for(std::size_t{0}, fresh.size(), [&](std::size_t q) { values[q] = is_inside(grid.point(fresh[q])) ? 1 : 0; });
+    } else {
+      // Membership changes only across the boundary, which lies on the sheets, which lie within
+      // `reach` of the superset's triangles (the assumption that chose the cells above): the two
+      // ends of a grid edge whose box grown by `reach` meets no triangle share their label. So
+      // the corners joined by such free edges form components with one label each: a component
+      // that touches a corner labelled before takes its label, any other is asked at its first
+      // and last corner (in key order), and where two answers disagree (the assumption failed)
+      // every corner of it is asked.
+      const auto fresh_at = [&](std::uint64_t key) -> std::ptrdiff_t {
+        const auto it = std::lower_bound(fresh.begin(), fresh.end(), key);
+        return it != fresh.end() && *it == key ? it - fresh.begin() : -1;
+      };
+      // Per fresh corner and axis direction: 0 no free edge, 1 a free edge to a fresh corner,
+      // 2 / 3 a free edge to a corner labelled outside / inside before.
+      std::vector<std::array<char, 6>> link(fresh.size());
+      tbb::parallel_for(std::size_t{0}, fresh.size(), [&](std::size_t q) {
+        const auto i = grid.index(fresh[q]);
+        const Eigen::Vector3d x = grid.point(fresh[q]);
+        for (int axis = 0; axis < 3; ++axis)
+          for (int side = 0; side < 2; ++side) {
+            char& l = link[q][static_cast<std::size_t>(2 * axis + side)];
+            l = 0;
+            std::array<std::int64_t, 3> j = i;
+            j[static_cast<std::size_t>(axis)] += side ? 1 : -1;
+            if (j[static_cast<std::size_t>(axis)] < 0 || j[static_cast<std::size_t>(axis)] >= grid.n[static_cast<std::size_t>(axis)]) continue;
+            const std::uint64_t neighbour = grid.key(j[0], j[1], j[2]);
+            char kind = 0;
+            if (fresh_at(neighbour) >= 0) {
+              if (!side) continue;  // the edge is tested from its lower end
+              kind = 1;
+            } else if (const auto it = label.find(neighbour); it != label.end()) {
+              kind = static_cast<char>(2 + it->second);
+            } else {
+              continue;
+            }
+            const Eigen::Vector3d y = grid.point(neighbour);
+            const double m = reach + 1e-9 * grid.h;
+            const CGAL::Bbox_3 box(std::min(x.x(), y.x()) - m, std::min(x.y(), y.y()) - m, std::min(x.z(), y.z()) - m,
+                                   std::max(x.x(), y.x()) + m, std::max(x.y(), y.y()) + m, std::max(x.z(), y.z()) + m);
+            if (!tree.do_intersect(box)) l = kind;
+          }
+      });
+      std::vector<std::size_t> parent(fresh.size());
+      std::iota(parent.begin(), parent.end(), std::size_t{0});
+      const auto find = [&](std::size_t a) {
+        while (parent[a] != a) a = parent[a] = parent[parent[a]];
+        return a;
+      };
+      for (std::size_t q = 0; q < fresh.size(); ++q) {
+        const auto i = grid.index(fresh[q]);
+        for (int axis = 0; axis < 3; ++axis) {
+          if (link[q][static_cast<std::size_t>(2 * axis + 1)] != 1) continue;
+          std::array<std::int64_t, 3> j = i;
+          ++j[static_cast<std::size_t>(axis)];
+          const auto r = static_cast<std::size_t>(fresh_at(grid.key(j[0], j[1], j[2])));
+          parent[find(q)] = find(r);
+        }
+      }
+      // Per component: the labels its corners see across free edges (bit 0 outside, bit 1
+      // inside), its first and last corner.
+      std::vector<char> seen(fresh.size(), 0);
+      std::vector<std::size_t> first(fresh.size(), fresh.size()), last(fresh.size(), 0);
+      for (std::size_t q = 0; q < fresh.size(); ++q) {
+        const std::size_t root = find(q);
+        for (char l : link[q])
+          if (l >= 2) seen[root] = static_cast<char>(seen[root] | (1 << (l - 2)));
+        first[root] = std::min(first[root], q);
+        last[root] = std::max(last[root], q);
+      }
+      std::vector<std::size_t> asked;
+      for (std::size_t q = 0; q < fresh.size(); ++q)
+        if (find(q) == q && (seen[q] == 0 || seen[q] == 3)) {
+          asked.push_back(first[q]);
+          if (last[q] != first[q]) asked.push_back(last[q]);
+        }
+      std::sort(asked.begin(), asked.end());
+      std::vector<char> answer(fresh.size(), -1);
+      tbb::parallel_for(std::size_t{0}, asked.size(), [&](std::size_t a) { answer[asked[a]] = is_inside(grid.point(fresh[asked[a]])) ? 1 : 0; });
+      // The label of each component, or -1 where its corners must all be asked.
+      std::vector<char> component(fresh.size(), -1);
+      for (std::size_t q = 0; q < fresh.size(); ++q) {
+        if (find(q) != q) continue;
+        if (seen[q] == 1 || seen[q] == 2) component[q] = static_cast<char>(seen[q] - 1);
+        else if (seen[q] == 0 && answer[first[q]] == answer[last[q]]) component[q] = answer[first[q]];
+      }
+      std::vector<std::size_t> rest;
+      for (std::size_t q = 0; q < fresh.size(); ++q) {
+        const char c = component[find(q)];
+        if (c >= 0) values[q] = c;
+        else if (answer[q] >= 0) values[q] = answer[q];
+        else rest.push_back(q);
+      }
+      tbb::parallel_for(std::size_t{0}, rest.size(), [&](std::size_t a) { values[rest[a]] = is_inside(grid.point(fresh[rest[a]])) ? 1 : 0; });
+      inferred += static_cast<std::int64_t>(fresh.size() - asked.size() - rest.size());
+    }
     for (std::size_t q = 0; q < fresh.size(); ++q) label[fresh[q]] = values[q];
     std::vector<std::uint64_t> grown;
     for (std::uint64_t cell : frontier) {
@@ -240,6 +352,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   }
   stats.grid_cells = static_cast<std::int64_t>(cells.size());
   stats.grid_corners = static_cast<std::int64_t>(label.size());
+  stats.grid_corners_inferred = inferred;
 
   // Marching tetrahedra: one polygon per tetrahedron with mixed corners, a cycle of 3 or 4
   // crossed grid edges (inside corner, outside corner), oriented from inside to outside on the
@@ -298,17 +411,6 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // near its end are tried there. Off every sheet: the bisection point.
   // Zero-area triangles of the superset cannot be crossed (and CGAL's segment-triangle
   // intersection requires a proper triangle): the tree holds the others, mapped back by index.
-  std::vector<ContourTriangle> proper_triangles;
-  std::vector<std::size_t> proper_source;
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    if (!triangles[t].is_degenerate()) {
-      proper_triangles.push_back(triangles[t]);
-      proper_source.push_back(t);
-    }
-  if (proper_triangles.empty()) throw InvalidInput("the superset has no triangle of nonzero area", "superset");
-  ContourTree tree(proper_triangles.cbegin(), proper_triangles.cend());
-  tree.build();
-  tree.accelerate_distance_queries();
   std::vector<ContourCrossing> crossings(edges.size());
   std::atomic<std::int64_t> off_superset{0}, on_sheets{0}, after_bisection{0};
   tbb::parallel_for(std::size_t{0}, edges.size(), [&](std::size_t e) {

@@ -82,6 +82,41 @@ TEST(ImageContouring, TheUnitBallFromItsSupersetIsClosedOrientedAndDropsTheInner
   for (const auto& x : b.mesh.positions) EXPECT_NEAR(x.norm(), 1, 3e-3);
 }
 
+// Corners joined by grid edges that no superset triangle comes near share their membership, so
+// inferring those labels (the default) must give the very contour that asking every corner
+// gives, with fewer membership tests; and a membership that changes away from every sheet (the
+// assumption broken: a ball of radius 0.6, whose sphere cuts the inner square of the superset
+// and nothing else of it) must still give no open surface (here an empty one: the labels the
+// components' end corners gave are wrong inside them, which is what the assumption is for).
+TEST(ImageContouring, InferredLabelsGiveTheSameContourWithFewerQueries) {
+  const TriangleMesh superset = contour_sphere_and_inner_sheet();
+  for (const double radius : {1.0, 0.6}) {
+    std::array<TrimmedBoundary, 2> b;
+    for (int infer = 0; infer < 2; ++infer) {
+      ImageContouringOptions options;
+      options.cell_size = 0.01;
+      options.infer_labels = infer == 1;
+      b[static_cast<std::size_t>(infer)] = contour_image_boundary(superset, {}, [radius](const Eigen::Vector3d& x) {
+        return std::optional<bool>(x.norm() <= radius);
+      }, options);
+    }
+    const auto &asked = b[0], &inferred = b[1];
+    EXPECT_EQ(asked.stats.grid_corners_inferred, 0);
+    EXPECT_TRUE(asked.stats.closed);
+    // Never an open or misoriented surface (an empty one has no boundary edges either).
+    EXPECT_EQ(inferred.stats.boundary_edges, 0) << radius << " at " << inferred.stats.open_at;
+    EXPECT_EQ(inferred.stats.nonmanifold_edges, 0) << radius;
+    if (radius < 1) continue;
+    EXPECT_GT(inferred.stats.grid_corners_inferred, asked.stats.grid_corners / 4);
+    EXPECT_EQ(inferred.stats.membership_queries + inferred.stats.grid_corners_inferred, asked.stats.membership_queries);
+    EXPECT_EQ(inferred.stats.grid_corners, asked.stats.grid_corners);
+    ASSERT_EQ(inferred.mesh.num_vertices(), asked.mesh.num_vertices());
+    ASSERT_EQ(inferred.mesh.num_triangles(), asked.mesh.num_triangles());
+    for (std::size_t v = 0; v < asked.mesh.num_vertices(); ++v) EXPECT_EQ(inferred.mesh.positions[v], asked.mesh.positions[v]);
+    for (std::size_t f = 0; f < asked.mesh.num_triangles(); ++f) EXPECT_EQ(inferred.mesh.triangles[f], asked.mesh.triangles[f]);
+  }
+}
+
 TEST(ImageContouring, RefusesBadOptions) {
   const TriangleMesh superset = contour_sphere_and_inner_sheet();
   const ImageMembershipTest inside = [](const Eigen::Vector3d&) { return std::optional<bool>(false); };

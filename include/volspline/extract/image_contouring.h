@@ -62,6 +62,11 @@ struct ImageContouringOptions {
   /// i.e. the boundary crosses that segment. Failures are counted
   /// (`refinement_edges_beyond_tolerance`); 0: no check.
   double verification_distance = 0;
+  /// Corners joined by grid edges that no superset triangle comes within superset_error of
+  /// share their membership (the boundary lies on the sheets): each such component is asked at
+  /// its first and last corner only (every corner where those disagree), or takes the label of a
+  /// corner classified before that it touches. false: every corner is asked.
+  bool infer_labels = true;
   Progress* progress = nullptr;
 };
 

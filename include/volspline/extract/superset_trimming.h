@@ -50,12 +50,12 @@ struct SupersetTrimmingStats {
   std::string open_at;
   double seconds_refine = 0, seconds_classify = 0, seconds_checks = 0;
   /// Contouring only (extract/image_contouring.h): the grid spacing (absolute), grid cells and
-  /// corners examined, grid edges where the boundary was found without a superset sheet
+  /// corners examined, the corners whose label was inferred from a neighbour's (not asked), grid edges where the boundary was found without a superset sheet
   /// crossing them (placed by bisection instead), crossings placed on a sheet by Newton, those
   /// found on a sheet only after bisection (the superset's triangles missed the crossing), and
   /// crease vertices and edge flips.
   double cell_size = 0;
-  std::int64_t grid_cells = 0, grid_corners = 0, crossings_off_superset = 0, crossings_on_sheets = 0,
+  std::int64_t grid_cells = 0, grid_corners = 0, grid_corners_inferred = 0, crossings_off_superset = 0, crossings_on_sheets = 0,
                crossings_after_bisection = 0, crease_vertices = 0, crease_flips = 0;
   /// Contouring: rounds in which crease flips or fans that made self-intersecting faces were undone.
   std::int64_t crease_repairs = 0;
