@@ -64,8 +64,7 @@ enum class RankCertificate {
 /// component tensor of SubJacobiansBernstein; `margins[k]` bounds the rounding error of the
 /// coefficients of component k (a coefficient counts as positive only when > margins[k], and a
 /// direction d proves only when d . c_i > sum_k |d_k| margins[k]). The separating direction is
-/// looked for by cheap tries (the mean of the normalised c_i, then perceptron steps towards the
-/// worst c_i), then as the point of the normalised c_i's convex hull nearest the origin
+/// looked for as the mean of the normalised c_i, then as the point of their convex hull nearest the origin
 /// (Wolfe's minimum-norm-point algorithm), which separates them whenever their hull misses the
 /// origin by more than the margins and rounding; any direction found is a sound certificate,
 /// since the test above decides.
