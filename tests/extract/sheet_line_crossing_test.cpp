@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -72,6 +73,50 @@ TEST(SheetLineCrossing, CrossingsOfTheCapsulesSheetsLieOnTheCapsule) {
   // the other sheets near the edge) and of the caps' at least 90 %.
   EXPECT_GE(folds_found, 0.65 * folds);
   EXPECT_GE(caps_found, 0.9 * caps);
+}
+
+// Fig. 7: a cylinder whose interior control points are pulled out beyond its side, turned about
+// its axis while it moves along it. Its generator doubles back along u at its equator (u = 3/4,
+// v = 1/2, radius 9/8 by the control net), where s_u = 0: the rank-deficient set is u = 3/4,
+// v = 1/2 for every w and t, and its image the cylinder of radius 9/8 from z = 0 to 6, the side
+// of the swept volume. Newton on that set, from starts off it, must land on it for segments
+// crossing the cylinder (it failed on 33 of 36 while the determinants were scaled by their own
+// columns, one of which vanishes there), and the fold of the cap t = 0 likewise on the
+// generator's own fold.
+TEST(SheetLineCrossing, NewtonReachesAFoldWhereTheMapDoublesBack) {
+  const auto patches = swept_patches(turning_folded_cylinder());
+  ASSERT_EQ(patches.size(), 1u);
+  const auto& s = patches[0];
+  int found = 0, tried = 0;
+  for (const double t0 : {0.2, 0.5, 0.8})
+    for (const double w0 : {0.1, 0.3, 0.6, 0.9})
+      for (const double off : {0.0, 0.01, 0.03}) {
+        const std::vector<double> x = s.evaluate_derivatives({0.75, 0.5, w0, t0}, 0);
+        const Eigen::Vector3d c(x[0], x[1], x[2]);
+        ASSERT_NEAR(std::hypot(c.x(), c.y()), 1.125, 1e-12);
+        const Eigen::Vector3d radial = Eigen::Vector3d(c.x(), c.y(), 0).normalized(), up(0, 0, 0.01);
+        const Eigen::Vector3d a = c - 0.05 * radial + up, b = c + 0.05 * radial + up;
+        const std::array<double, 4> start{0.75 + off, 0.5 - off, w0 + off, t0 + off};
+        ++tried;
+        const auto crossing = sheet_line_crossing<4>(s, SupersetSheet{0, false}, start, 0.5, a, b);
+        if (!crossing) continue;
+        ++found;
+        const Eigen::Vector3d y = a + crossing->lambda * (b - a);
+        EXPECT_NEAR(std::hypot(y.x(), y.y()), 1.125, 1e-9);
+        EXPECT_NEAR(crossing->parameter[0], 0.75, 1e-6);
+        EXPECT_NEAR(crossing->parameter[1], 0.5, 1e-6);
+        EXPECT_NEAR(std::abs(crossing->normal.dot(radial)), 1, 1e-6);
+      }
+  EXPECT_EQ(found, tried);
+  // The cap t = 0: the generator's own fold (J123 = 0; at mid-height v = 1/2 it is at u = 3/4,
+  // where s_u = 0) crossed radially there.
+  const std::vector<double> x = s.evaluate_derivatives({0.75, 0.5, 0.3, 0}, 0);
+  const Eigen::Vector3d c(x[0], x[1], x[2]), radial = Eigen::Vector3d(c.x(), c.y(), 0).normalized();
+  const auto fold = sheet_line_crossing<4>(s, SupersetSheet{1 << 3, true}, {0.76, 0.49, 0.31, 0}, 0.5, c - 0.05 * radial,
+                                           c + 0.05 * radial);
+  ASSERT_TRUE(fold);
+  EXPECT_NEAR(fold->parameter[0], 0.75, 1e-6);
+  EXPECT_EQ(fold->parameter[3], 0);
 }
 
 TEST(SheetLineCrossing, RefusesSheetsItDoesNotKnow) {
