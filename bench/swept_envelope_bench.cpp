@@ -24,11 +24,12 @@ SweptSolid swept_bench_example(int which) {
   }
 }
 
-void BM_SweptEnvelope(benchmark::State& state, int which, bool trim, JacobianBoundMethod bounds) {
+void BM_SweptEnvelope(benchmark::State& state, int which, bool trim, JacobianBoundMethod bounds, double coarse_cells = 0) {
   const auto patches = swept_patches(swept_bench_example(which));
   SweptEnvelopeOptions options;
   options.trim = trim;
   options.bounds = bounds;
+  options.coarse_cell_factor = coarse_cells;
   SweptEnvelope e;
   for (auto _ : state) {
     e = swept_envelope(patches, options);
@@ -52,10 +53,16 @@ constexpr auto kCone = JacobianBoundMethod::Cone;
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig4_torus_trimmed, 0, true, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig5_tumbling_cylinder_trimmed, 1, true, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig6_folded_cube_trimmed, 2, true, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig7_turning_folded_cylinder_trimmed, 3, true, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig8_tumbling_folded_cube_trimmed, 4, true, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, capsule_trimmed, 5, true, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, annulus_trimmed, 6, true, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
 // Bernstein against cone bounds on the superset (the rank-deficient set and the 3-face folds).
+// A coarse grid (16 x the tolerance) refined toward the sheets (`--coarse-cells 16`).
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig4_torus_coarse16, 0, true, kBezier, 16.0)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig7_turning_folded_cylinder_coarse16, 3, true, kBezier, 16.0)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, capsule_coarse16, 5, true, kBezier, 16.0)->Unit(benchmark::kMillisecond)->Iterations(1);
+
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig6_superset_bezier, 2, false, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig6_superset_cone_baseline, 2, false, kCone)->Unit(benchmark::kMillisecond)->Iterations(1);
 
