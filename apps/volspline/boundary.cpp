@@ -205,6 +205,8 @@ void run_boundary(const BoundaryArguments& a) {
                                     {"triangles", ts.result_triangles},
                                     {"grid_cell_size", ts.cell_size},
                                     {"grid_cells", ts.grid_cells},
+                                    {"grid_corners", ts.grid_corners},
+                                    {"grid_corners_inferred", ts.grid_corners_inferred},
                                     {"membership_queries", ts.membership_queries},
                                     {"crossings_on_sheets", ts.crossings_on_sheets},
                                     {"crossings_off_superset", ts.crossings_off_superset},
