@@ -258,9 +258,12 @@ RankCertificate bernstein_rank_certificate(const BernsteinTensor<4>& minors, con
   // A direction proves when d . c_i > sum |d_k| margin_k on the unnormalised coefficients, which
   // keeps d . c > 0 for every perturbation of c within the margins. Tried: the mean of the unit
   // vectors (one pass; it separates most cells away from the set), then the point of their hull
-  // nearest the origin (Wolfe), which separates whenever anything does. Eight perceptron steps
-  // between the two, tried before, certified no cell the two miss and cost a third of the
-  // subdivision's time (docs/envelopes.md).
+  // nearest the origin (Wolfe), which separates the unit vectors whenever their hull misses the
+  // origin. The margins are not part of that search, so where the vectors' lengths differ by
+  // many orders a direction it finds can fail the margin test while another would pass; that
+  // costs a split, never a wrong certificate (the margins are 1e-10 of the scale). Eight
+  // perceptron steps between the two, tried before, certified no cell the two miss on the
+  // examples and cost a third of the subdivision's time (docs/envelopes.md).
   const auto proves = [&](const Eigen::Vector4d& x) {
     double slack = 0;
     for (std::size_t k = 0; k < 4; ++k) slack += std::abs(x[static_cast<Eigen::Index>(k)]) * margins[k];

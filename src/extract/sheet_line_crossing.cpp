@@ -149,7 +149,9 @@ std::optional<SheetLineCrossing<D>> sheet_line_crossing(const TensorSpline<D>& s
         bool on_face = false;
         for (int j = 0; j < k; ++j) {
           const int f = free[static_cast<std::size_t>(j)];
-          const double x = p[static_cast<std::size_t>(f)], margin = 1e-9 * (s.domain_max(f) - s.domain_min(f));
+          // 1e-6 of the range: Newton may stop a little off a collapsed face, where J is tiny
+          // without a fold (an independent review's point).
+          const double x = p[static_cast<std::size_t>(f)], margin = 1e-6 * (s.domain_max(f) - s.domain_min(f));
           on_face = on_face || x <= s.domain_min(f) + margin || x >= s.domain_max(f) - margin;
         }
         if (smallest < 1e-3 * largest && on_face) return std::nullopt;

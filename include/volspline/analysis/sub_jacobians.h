@@ -65,9 +65,9 @@ enum class RankCertificate {
 /// coefficients of component k (a coefficient counts as positive only when > margins[k], and a
 /// direction d proves only when d . c_i > sum_k |d_k| margins[k]). The separating direction is
 /// looked for as the mean of the normalised c_i, then as the point of their convex hull nearest the origin
-/// (Wolfe's minimum-norm-point algorithm), which separates them whenever their hull misses the
-/// origin by more than the margins and rounding; any direction found is a sound certificate,
-/// since the test above decides.
+/// (Wolfe's minimum-norm-point algorithm), which separates the normalised vectors whenever their
+/// hull misses the origin (the margin test can still refuse it where the lengths differ by many
+/// orders); any direction found is a sound certificate, since the test above decides.
 RankCertificate bernstein_rank_certificate(const BernsteinTensor<4>& minors, const std::array<double, 4>& margins);
 
 /// The cone certificate for a cell of a polynomial map whose points (x, y, z) are `geometry`
