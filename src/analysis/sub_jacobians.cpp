@@ -109,21 +109,29 @@ bool minimum_norm_separation(const double* c, const std::vector<double>& inverse
     // than the rounding, or accept() refused x for its margins.
     if (lowest >= x.squaredNorm() * (1 - 1e-12)) return false;
     if (std::find(active.begin(), active.end(), worst) != active.end()) return false;
+    // Five affinely independent vectors span R^4's affine hull; more means rounding kept a
+    // dependent one: give up rather than grow the system.
+    if (active.size() >= 5) return false;
     active.push_back(worst);
     weight.push_back(0.0);
     for (int minor = 0; minor < 8; ++minor) {
       // The affine hull's minimum-norm point: min |U a|^2 with sum a = 1 (a KKT system).
       const Eigen::Index m = static_cast<Eigen::Index>(active.size());
-      Eigen::MatrixXd u(4, m);
+      // At most five active vectors in R^4 (and one more just added): fixed-capacity storage, no
+      // allocation in this hot loop.
+      using Active = Eigen::Matrix<double, 4, Eigen::Dynamic, 0, 4, 6>;
+      using System = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 7, 7>;
+      using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 7, 1>;
+      Active u(4, m);
       for (Eigen::Index k = 0; k < m; ++k) u.col(k) = unit(active[static_cast<std::size_t>(k)]);
-      Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(m + 1, m + 1);
+      System kkt = System::Zero(m + 1, m + 1);
       kkt.topLeftCorner(m, m) = u.transpose() * u;
       kkt.block(0, m, m, 1).setOnes();
       kkt.block(m, 0, 1, m).setOnes();
-      Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m + 1);
+      Column rhs = Column::Zero(m + 1);
       rhs(m) = 1;
-      const Eigen::VectorXd solution = kkt.completeOrthogonalDecomposition().solve(rhs);
-      const Eigen::VectorXd a = solution.head(m);
+      const Column solution = kkt.completeOrthogonalDecomposition().solve(rhs);
+      const Column a = solution.head(m);
       if (!a.allFinite()) return false;
       if ((a.array() > 1e-14).all()) {
         x = u * a;
