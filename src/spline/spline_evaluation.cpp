@@ -169,24 +169,29 @@ thread_local std::vector<double> tl_grid_scratch[3];
 // u, v, w, C numbers per coefficient. Contracting w first leaves rows of N0*C contiguous
 // numbers, which the compiler unrolls and vectorises. Computes the value and, for order 1, the
 // three first partials in derivative_multi_indices order.
+// One contraction stage of the fixed kernels: L contiguous numbers at `row`, n of them `stride`
+// apart along the contracted direction, summed with the basis values B[0..n) into `value` and,
+// for order 1, with the derivatives B[n..2n) into `derivative`.
+template <int L, int Order>
+inline void contract_fixed_row(const double* row, std::ptrdiff_t stride, int n, const double* B, double* value, double* derivative) {
+  for (int x = 0; x < L; ++x) {
+    double a = 0.0, b = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double g = row[k * stride + x];
+      a += B[k] * g;
+      if constexpr (Order) b += B[n + k] * g;
+    }
+    value[x] = a;
+    if constexpr (Order) derivative[x] = b;
+  }
+}
+
 template <int N0, int N1, int N2, int C, int Order>
 void contract_volume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff_t sw, const double* Bu, const double* Bv,
                            const double* Bw, double* results) {
   constexpr int L = N0 * C;
   double w0[N1][L], w1[N1][L];
-  for (int j = 0; j < N1; ++j) {
-    const double* row = G + j * sv;
-    for (int x = 0; x < L; ++x) {
-      double a = 0.0, b = 0.0;
-      for (int k = 0; k < N2; ++k) {
-        const double g = row[k * sw + x];
-        a += Bw[k] * g;
-        if constexpr (Order) b += Bw[N2 + k] * g;
-      }
-      w0[j][x] = a;
-      w1[j][x] = b;
-    }
-  }
+  for (int j = 0; j < N1; ++j) contract_fixed_row<L, Order>(G + j * sv, sw, N2, Bw, w0[j], w1[j]);
   double v00[L], v10[L], v01[L];
   for (int x = 0; x < L; ++x) {
     double a = 0.0, b = 0.0, c = 0.0;
@@ -231,19 +236,7 @@ void contract_hypervolume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff
   constexpr int L = N0 * C;
   double t0[N2][N1][L], t1[N2][N1][L];
   for (int k = 0; k < N2; ++k)
-    for (int j = 0; j < N1; ++j) {
-      const double* row = G + k * sw + j * sv;
-      for (int x = 0; x < L; ++x) {
-        double a = 0.0, b = 0.0;
-        for (int l = 0; l < nt; ++l) {
-          const double g = row[l * st + x];
-          a += Bt[l] * g;
-          if constexpr (Order) b += Bt[nt + l] * g;
-        }
-        t0[k][j][x] = a;
-        if constexpr (Order) t1[k][j][x] = b;
-      }
-    }
+    for (int j = 0; j < N1; ++j) contract_fixed_row<L, Order>(G + k * sw + j * sv, st, nt, Bt, t0[k][j], t1[k][j]);
   contract_volume_fixed<N0, N1, N2, C, Order>(&t0[0][0][0], L, N1 * L, Bu, Bv, Bw, results);
   if constexpr (Order) contract_volume_fixed<N0, N1, N2, C, 0>(&t1[0][0][0], L, N1 * L, Bu, Bv, Bw, results + 4 * C);
 }
