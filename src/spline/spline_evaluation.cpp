@@ -241,9 +241,8 @@ void contract_hypervolume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff
   if constexpr (Order) contract_volume_fixed<N0, N1, N2, C, 0>(&t1[0][0][0], L, N1 * L, Bu, Bv, Bw, results + 4 * C);
 }
 
-// The fixed-size kernels for n_u, n_v, n_w in {2, 3, 4} (degrees 1 to 3: every primitive and
-// sweep of the library) and 3 or 4 numbers per coefficient; nullptr otherwise (the general
-// recurrence then runs).
+// The fixed-size kernels for n_u in {2, 3, 4} and n_v = n_w in {2, 3, 4} (degrees 1 to 3) and 3
+// or 4 numbers per coefficient; nullptr otherwise (the general recurrence then runs).
 using FixedKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, const double*, const double*, const double*,
                              double*);
 using FixedHyperKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, std::ptrdiff_t, int, const double*, const double*,
@@ -254,31 +253,28 @@ constexpr std::pair<FixedKernel, FixedHyperKernel> fixed_pair() {
   return {contract_volume_fixed<N0, N1, N2, C, Order>, contract_hypervolume_fixed<N0, N1, N2, C, Order>};
 }
 
-template <int C, int Order, int N0, int N1>
-std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_n2(int n2) {
-  if (n2 == 2) return fixed_pair<N0, N1, 2, C, Order>();
-  if (n2 == 3) return fixed_pair<N0, N1, 3, C, Order>();
-  return fixed_pair<N0, N1, 4, C, Order>();
-}
-
 template <int C, int Order, int N0>
-std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_n1(int n1, int n2) {
-  if (n1 == 2) return fixed_kernels_n2<C, Order, N0, 2>(n2);
-  if (n1 == 3) return fixed_kernels_n2<C, Order, N0, 3>(n2);
-  return fixed_kernels_n2<C, Order, N0, 4>(n2);
+std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_n1(int n12) {
+  if (n12 == 2) return fixed_pair<N0, 2, 2, C, Order>();
+  if (n12 == 3) return fixed_pair<N0, 3, 3, C, Order>();
+  return fixed_pair<N0, 4, 4, C, Order>();
 }
 
 template <int C, int Order>
 std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_of(const std::array<int, 3>& n) {
-  if (n[0] == 2) return fixed_kernels_n1<C, Order, 2>(n[1], n[2]);
-  if (n[0] == 3) return fixed_kernels_n1<C, Order, 3>(n[1], n[2]);
-  return fixed_kernels_n1<C, Order, 4>(n[1], n[2]);
+  if (n[0] == 2) return fixed_kernels_n1<C, Order, 2>(n[1]);
+  if (n[0] == 3) return fixed_kernels_n1<C, Order, 3>(n[1]);
+  return fixed_kernels_n1<C, Order, 4>(n[1]);
 }
 
 std::pair<FixedKernel, FixedHyperKernel> fixed_kernels(const std::array<int, 3>& n, int c, int order) {
   if (order > 1 || (c != 3 && c != 4)) return {nullptr, nullptr};
   for (int x : n)
     if (x < 2 || x > 4) return {nullptr, nullptr};
+  // p_v = p_w (any p_u): the primitives and sweeps of the library (a ball's or torus's (1, 2, 2),
+  // tricubic and triquadratic solids); other combinations would triple the instances, and the
+  // build time with them, for no model we have.
+  if (n[1] != n[2]) return {nullptr, nullptr};
   if (c == 3) return order == 0 ? fixed_kernels_of<3, 0>(n) : fixed_kernels_of<3, 1>(n);
   return order == 0 ? fixed_kernels_of<4, 0>(n) : fixed_kernels_of<4, 1>(n);
 }
