@@ -29,6 +29,7 @@ struct SweepEnvelopeArguments {
   std::string out, bounds = "bezier", trimming = "auto", stats, png, size = "800,600", view, cut_open, html;
   double tol = 1e-3, coarse_cells = 0, refine = 0.25;
   std::int64_t max_cells = 2000000;
+  int adaptive_cells = 0;
   bool superset = false;
 };
 
@@ -62,6 +63,8 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                      {"method", s.trimmed_by == EnvelopeTrimming::Arrangement ? "arrangement" : "contouring"},
                      {"grid_cell_size", t.cell_size},
                      {"grid_cells", t.grid_cells},
+                     {"grid_cells_refined", t.grid_cells_refined},
+                     {"grid_adaptations", t.grid_adaptations},
                      {"grid_corners", t.grid_corners},
                      {"grid_corners_inferred", t.grid_corners_inferred},
                      {"crossings_off_superset", t.crossings_off_superset},
@@ -123,7 +126,12 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   if (!(a.coarse_cells >= 0 && a.coarse_cells * a.tol < 0.5))
     throw InvalidInput("expected 0 (off) or a positive multiple of --tol below 0.5 / tol", "--coarse-cells");
   if (!(a.refine > 0 && a.refine <= 1)) throw InvalidInput("expected a multiple of --tol in (0, 1]", "--refine");
+  if (a.adaptive_cells != 0 && (a.adaptive_cells < 2 || a.adaptive_cells > 16 || a.adaptive_cells % 2 != 0))
+    throw InvalidInput("expected 0 (off) or an even number from 2 to 16", "--adaptive-cells");
+  if (a.adaptive_cells != 0 && a.coarse_cells > 0) throw InvalidInput("give --coarse-cells or --adaptive-cells, not both", "--adaptive-cells");
+  if (a.adaptive_cells * 3 * a.tol >= 0.5) throw InvalidInput("expected --adaptive-cells x 3 x --tol below 0.5", "--adaptive-cells");
   options.coarse_cell_factor = a.coarse_cells;
+  options.adaptive_ratio = a.adaptive_cells;
   options.refinement_factor = a.refine;
   options.trim = !a.superset;
   if (a.bounds == "bezier") options.bounds = JacobianBoundMethod::Bezier;
@@ -171,11 +179,13 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
                 << (t.self_intersection_free ? ", no self-intersections" : ", self-intersecting");
       if (!t.closed || !t.self_intersection_free) open = true;
       if (t.refinement_edges_beyond_tolerance > 0) beyond_tolerance = true;
-      if (options.coarse_cell_factor > 0) {
+      if (options.coarse_cell_factor > 0 || options.adaptive_ratio > 0) {
         if (t.grid_passes == 2)
-          std::cout << "; the coarse grid was not kept (" << t.coarse_grid_rejected << ")";
+          std::cout << "; the " << (options.adaptive_ratio > 0 ? "adaptive cells were" : "coarse grid was") << " not kept ("
+                    << t.coarse_grid_rejected << ")";
         else
-          std::cout << "; coarse grid refined toward the sheets: " << t.refinement_splits << " edges split, "
+          std::cout << "; " << (options.adaptive_ratio > 0 ? std::to_string(t.grid_cells_refined) + " coarse cells refined, " : std::string("coarse grid "))
+                    << "refined toward the sheets: " << t.refinement_splits << " edges split, "
                     << t.refinement_edges_beyond_tolerance << " of " << t.refinement_edges_verified
                     << " edges it could not refine farther than the tolerance from the boundary";
       }
@@ -223,7 +233,11 @@ void add_sweep_envelope_command(CLI::App& app) {
                   "contour on a grid of this many multiples of --tol (e.g. 16) and refine its edges toward the sheets' equations "
                   "instead of the default fine grid (3 x tol): much faster on smooth sweeps, creases it cannot resolve are "
                   "chamfered and counted (docs/envelopes.md, \"Refinement toward the sheets\"; default 0: off)");
-  cmd->add_option("--refine", a->refine, "with --coarse-cells: split edges until their midpoints are within this multiple of --tol of the sheet (default 0.25)");
+  cmd->add_option("--adaptive-cells", a->adaptive_cells,
+                  "contour on cells this many times the fine grid (3 x tol; an even number up to 16, e.g. 4), split into fine "
+                  "cells only where the boundary bends sharply (creases), edges refined toward the sheets' equations "
+                  "(docs/envelopes.md, \"Adaptive cells\"; default 0: off)");
+  cmd->add_option("--refine", a->refine, "with --coarse-cells or --adaptive-cells: split edges until their midpoints are within this multiple of --tol of the sheet (default 0.25)");
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (parts coloured by source)");
   cmd->add_option("--size", a->size, "picture size W,H in pixels (default 800,600)");

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <numeric>
 #include <numbers>
 #include <set>
@@ -81,15 +82,24 @@ struct ContourCrossing {
   Eigen::Vector3d parameters = Eigen::Vector3d::Zero();
   double extra = 0;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  // Placed on a sheet after the bracket was bisected; on no sheet at all.
+  bool after_bisection = false;
+  bool off_superset = false;
+};
+
+// A cell of the contouring complex: its lowest lattice point and its width in lattice steps.
+struct ContourCell {
+  std::uint64_t low = 0;
+  std::int64_t size = 1;
 };
 
 // The part of the contour in one tetrahedron: a cycle of 3 or 4 crossings (vertex ids), outward,
-// and the tetrahedron (its cell's key and its index in kContourKuhnTetrahedra).
+// its cell (an index into the complex's cells) and the tetrahedron's lattice points.
 struct ContourPolygon {
   std::array<int, 4> vertex{};
   int count = 0;
   std::uint64_t cell = 0;
-  int tetrahedron = 0;
+  std::array<std::uint64_t, 4> tetrahedron{};
 };
 
 // The six Kuhn tetrahedra of the unit cube: 000 -> e_p0 -> e_p0 + e_p1 -> 111 for each
@@ -114,6 +124,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     throw InvalidInput("expected 0 <= superset_error < 0.5", "superset_error");
   if (options.bisection_steps < 1 || options.bisection_steps > 60) throw InvalidInput("expected 1 to 60 bisection steps", "bisection_steps");
   if (options.max_cells < 1) throw InvalidInput("expected a positive budget of cells", "max_cells");
+  if (options.coarse_ratio < 1 || options.coarse_ratio > 16 || (options.coarse_ratio > 1 && options.coarse_ratio % 2 != 0))
+    throw InvalidInput("expected a coarse ratio of 1 or an even number up to 16", "coarse_ratio");
   if (!(options.refinement_tolerance >= 0 && options.refinement_tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_tolerance < 0.5", "refinement_tolerance");
   if (!(options.verification_distance >= 0 && options.verification_distance < 0.5))
@@ -131,13 +143,22 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   if (options.progress) options.progress->begin_phase("contouring grid");
   const auto [lo, hi] = superset.bounding_box();
   const double diagonal = std::max((hi - lo).norm(), 1e-300);
+  // The lattice of the fine cells; cells are `ratio` lattice steps wide except where they are
+  // refined (below).
+  const int ratio = options.coarse_ratio;
   ContourGrid grid;
   grid.h = options.cell_size * diagonal;
-  // Shifted by fractions of h that no model's round coordinates share, so that planar faces and
-  // the creases between them do not run through grid corners and faces (where they would make
+  const double coarse_h = ratio * grid.h;
+  // Shifted by fractions of a cell that no model's round coordinates share, so that planar faces
+  // and the creases between them do not run through grid corners and faces (where they would make
   // crossings at the ends of edges and creases on tetrahedron faces).
-  grid.origin = lo - grid.h * Eigen::Vector3d(2.3183, 2.2718, 2.1414);
-  for (int d = 0; d < 3; ++d) grid.n[static_cast<std::size_t>(d)] = static_cast<std::int64_t>(std::ceil((hi[d] - lo[d]) / grid.h)) + 5;
+  grid.origin = lo - coarse_h * Eigen::Vector3d(2.3183, 2.2718, 2.1414);
+  std::array<std::int64_t, 3> coarse_n{};
+  for (int d = 0; d < 3; ++d) {
+    const auto du = static_cast<std::size_t>(d);
+    coarse_n[du] = static_cast<std::int64_t>(std::ceil((hi[d] - lo[d]) / coarse_h)) + 5;
+    grid.n[du] = ratio * (coarse_n[du] - 1) + 1;
+  }
   stats.cell_size = grid.h;
   const double reach = options.superset_error * diagonal;
 
@@ -152,7 +173,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     triangles.emplace_back(c[0], c[1], c[2]);
   }
 
-  // The cells within `reach` of a superset triangle (closed boxes: a point on a cell face
+  // The (coarse) cells within `reach` of a superset triangle (closed boxes: a point on a cell face
   // counts for both cells).
   std::vector<std::uint64_t> cell_list;
   for (const ContourTriangle& t : triangles) {
@@ -160,20 +181,20 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     std::array<std::int64_t, 3> first{}, last{};
     for (int d = 0; d < 3; ++d) {
       const auto du = static_cast<std::size_t>(d);
-      first[du] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((b.min(d) - reach - grid.origin[d]) / grid.h)) - 1, 0, grid.n[du] - 2);
-      last[du] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((b.max(d) + reach - grid.origin[d]) / grid.h)), 0, grid.n[du] - 2);
+      first[du] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((b.min(d) - reach - grid.origin[d]) / coarse_h)) - 1, 0, coarse_n[du] - 2);
+      last[du] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((b.max(d) + reach - grid.origin[d]) / coarse_h)), 0, coarse_n[du] - 2);
     }
     const bool small = last[0] - first[0] <= 2 && last[1] - first[1] <= 2 && last[2] - first[2] <= 2;
     for (std::int64_t k = first[2]; k <= last[2]; ++k)
       for (std::int64_t j = first[1]; j <= last[1]; ++j)
         for (std::int64_t i = first[0]; i <= last[0]; ++i) {
           if (!small) {
-            const Eigen::Vector3d c = grid.origin + grid.h * Eigen::Vector3d(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k));
-            const double m = reach + 1e-9 * grid.h;
-            if (!CGAL::do_intersect(t, CGAL::Bbox_3(c.x() - m, c.y() - m, c.z() - m, c.x() + grid.h + m, c.y() + grid.h + m, c.z() + grid.h + m)))
+            const Eigen::Vector3d c = grid.origin + coarse_h * Eigen::Vector3d(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k));
+            const double m = reach + 1e-9 * coarse_h;
+            if (!CGAL::do_intersect(t, CGAL::Bbox_3(c.x() - m, c.y() - m, c.z() - m, c.x() + coarse_h + m, c.y() + coarse_h + m, c.z() + coarse_h + m)))
               continue;
           }
-          cell_list.push_back(grid.key(i, j, k));
+          cell_list.push_back(grid.key(ratio * i, ratio * j, ratio * k));
         }
     if (static_cast<std::int64_t>(cell_list.size()) > 4 * options.max_cells) {
       std::sort(cell_list.begin(), cell_list.end());
@@ -211,23 +232,17 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     const std::optional<bool> answer = inside(x);
     return !answer || *answer;
   };
-  auto corner_key = [&](std::uint64_t cell, int c) {
-    const auto i = grid.index(cell);
-    return grid.key(i[0] + (c & 1), i[1] + ((c >> 1) & 1), i[2] + ((c >> 2) & 1));
+  auto offset_key = [&](std::uint64_t key, std::int64_t di, std::int64_t dj, std::int64_t dk) {
+    const auto i = grid.index(key);
+    return grid.key(i[0] + di, i[1] + dj, i[2] + dk);
   };
-  std::vector<std::uint64_t> frontier(cells.begin(), cells.end());
+  auto corner_key = [&](std::uint64_t cell, int c, std::int64_t size) {
+    return offset_key(cell, size * (c & 1), size * ((c >> 1) & 1), size * ((c >> 2) & 1));
+  };
   std::int64_t inferred = 0;
-  while (!frontier.empty()) {
-    std::vector<std::uint64_t> fresh;
-    for (std::uint64_t cell : frontier)
-      for (int c = 0; c < 8; ++c) {
-        const std::uint64_t k = corner_key(cell, c);
-        if (label.try_emplace(k, 0).second) fresh.push_back(k);
-      }
-    // In key order (rows along x, then y, then z), so that a thread's consecutive queries are
-    // grid neighbours and a membership test that starts from its last answer (image_membership.h)
-    // starts next door.
-    std::sort(fresh.begin(), fresh.end());
+  // Labels the lattice points `fresh` (sorted, unique, entered in `label` but not labelled yet).
+  // With `infer_labels`, their neighbours `step` lattice steps away along the axes take part.
+  auto label_points = [&](const std::vector<std::uint64_t>& fresh, std::int64_t step) {
     std::vector<char> values(fresh.size());
     if (!options.infer_labels) {
       tbb::parallel_for(std::size_t{0}, fresh.size(), [&](std::size_t q) { values[q] = is_inside(grid.point(fresh[q])) ? 1 : 0; });
@@ -254,14 +269,14 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             char& l = link[q][static_cast<std::size_t>(2 * axis + side)];
             l = 0;
             std::array<std::int64_t, 3> j = i;
-            j[static_cast<std::size_t>(axis)] += side ? 1 : -1;
+            j[static_cast<std::size_t>(axis)] += side ? step : -step;
             if (j[static_cast<std::size_t>(axis)] < 0 || j[static_cast<std::size_t>(axis)] >= grid.n[static_cast<std::size_t>(axis)]) continue;
             const std::uint64_t neighbour = grid.key(j[0], j[1], j[2]);
             char kind = 0;
             if (fresh_at(neighbour) >= 0) {
               if (!side) continue;  // the edge is tested from its lower end
               kind = 1;
-            } else if (const auto it = label.find(neighbour); it != label.end()) {
+            } else if (const auto it = label.find(neighbour); it != label.end() && it->second >= 0) {
               kind = static_cast<char>(2 + it->second);
             } else {
               continue;
@@ -284,7 +299,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         for (int axis = 0; axis < 3; ++axis) {
           if (link[q][static_cast<std::size_t>(2 * axis + 1)] != 1) continue;
           std::array<std::int64_t, 3> j = i;
-          ++j[static_cast<std::size_t>(axis)];
+          j[static_cast<std::size_t>(axis)] += step;
           const auto r = static_cast<std::size_t>(fresh_at(grid.key(j[0], j[1], j[2])));
           parent[find(q)] = find(r);
         }
@@ -327,19 +342,38 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       inferred += static_cast<std::int64_t>(fresh.size() - asked.size() - rest.size());
     }
     for (std::size_t q = 0; q < fresh.size(); ++q) label[fresh[q]] = values[q];
+  };
+  // Enters the points of `keys` not labelled yet and labels them.
+  auto label_all = [&](std::vector<std::uint64_t> keys, std::int64_t step) {
+    std::vector<std::uint64_t> fresh;
+    for (std::uint64_t k : keys)
+      if (label.try_emplace(k, -1).second) fresh.push_back(k);
+    // In key order (rows along x, then y, then z), so that a thread's consecutive queries are
+    // grid neighbours and a membership test that starts from its last answer (image_membership.h)
+    // starts next door.
+    std::sort(fresh.begin(), fresh.end());
+    label_points(fresh, step);
+  };
+  std::vector<std::uint64_t> frontier(cells.begin(), cells.end());
+  while (!frontier.empty()) {
+    std::vector<std::uint64_t> corners;
+    corners.reserve(8 * frontier.size());
+    for (std::uint64_t cell : frontier)
+      for (int c = 0; c < 8; ++c) corners.push_back(corner_key(cell, c, ratio));
+    label_all(std::move(corners), ratio);
     std::vector<std::uint64_t> grown;
     for (std::uint64_t cell : frontier) {
       const auto i = grid.index(cell);
       for (int axis = 0; axis < 3; ++axis)
         for (int side = 0; side < 2; ++side) {
           std::array<std::int64_t, 3> j = i;
-          j[static_cast<std::size_t>(axis)] += side ? 1 : -1;
-          if (j[static_cast<std::size_t>(axis)] < 0 || j[static_cast<std::size_t>(axis)] > grid.n[static_cast<std::size_t>(axis)] - 2) continue;
+          j[static_cast<std::size_t>(axis)] += side ? ratio : -ratio;
+          if (j[static_cast<std::size_t>(axis)] < 0 || j[static_cast<std::size_t>(axis)] > grid.n[static_cast<std::size_t>(axis)] - 1 - ratio) continue;
           const std::uint64_t neighbour = grid.key(j[0], j[1], j[2]);
           if (cells.count(neighbour)) continue;
           int in = 0;
           for (int c = 0; c < 8; ++c)
-            if (((c >> axis) & 1) == side) in += label.at(corner_key(cell, c));
+            if (((c >> axis) & 1) == side) in += label.at(corner_key(cell, c, ratio));
           if (in == 0 || in == 4) continue;
           cells.insert(neighbour);
           grown.push_back(neighbour);
@@ -350,57 +384,65 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
                          "cell_size");
     frontier = std::move(grown);
   }
-  stats.grid_cells = static_cast<std::int64_t>(cells.size());
-  stats.grid_corners = static_cast<std::int64_t>(label.size());
-  stats.grid_corners_inferred = inferred;
 
   // Marching tetrahedra: one polygon per tetrahedron with mixed corners, a cycle of 3 or 4
-  // crossed grid edges (inside corner, outside corner), oriented from inside to outside on the
+  // crossed lattice edges (inside corner, outside corner), oriented from inside to outside on the
   // edges' midpoints (the level set at 1/2 of the linear interpolant of the labels, whose
   // orientation moving the vertices along their edges does not change).
   std::map<std::pair<std::uint64_t, std::uint64_t>, int> edge_vertex;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
   std::vector<ContourPolygon> polygons;
+  std::vector<ContourCell> cell_of;
   auto edge_id = [&](std::uint64_t a, std::uint64_t b) {
     const auto [it, fresh] = edge_vertex.try_emplace({a, b}, static_cast<int>(edges.size()));
     if (fresh) edges.emplace_back(a, b);
     return it->second;
   };
+  auto lattice_point = [&](std::uint64_t key) {
+    const auto i = grid.index(key);
+    return Eigen::Vector3d(static_cast<double>(i[0]), static_cast<double>(i[1]), static_cast<double>(i[2]));
+  };
+  auto march = [&](const std::array<std::uint64_t, 4>& tet, std::uint64_t cell) {
+    std::vector<int> ins, outs;
+    for (int c = 0; c < 4; ++c) (label.at(tet[static_cast<std::size_t>(c)]) ? ins : outs).push_back(c);
+    if (ins.empty() || outs.empty()) return;
+    std::array<Eigen::Vector3d, 4> corner;
+    for (int c = 0; c < 4; ++c) corner[static_cast<std::size_t>(c)] = lattice_point(tet[static_cast<std::size_t>(c)]);
+    Eigen::Vector3d in_centre = Eigen::Vector3d::Zero(), out_centre = Eigen::Vector3d::Zero();
+    for (int c : ins) in_centre += corner[static_cast<std::size_t>(c)] / static_cast<double>(ins.size());
+    for (int c : outs) out_centre += corner[static_cast<std::size_t>(c)] / static_cast<double>(outs.size());
+    const Eigen::Vector3d outward = out_centre - in_centre;
+    std::vector<std::pair<int, int>> cycle;
+    if (ins.size() == 1) cycle = {{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[0], outs[2]}};
+    else if (outs.size() == 1) cycle = {{ins[0], outs[0]}, {ins[1], outs[0]}, {ins[2], outs[0]}};
+    else cycle = {{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[1], outs[1]}, {ins[1], outs[0]}};
+    auto mid = [&](const std::pair<int, int>& p) {
+      return Eigen::Vector3d(0.5 * (corner[static_cast<std::size_t>(p.first)] + corner[static_cast<std::size_t>(p.second)]) - in_centre);
+    };
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (std::size_t j = 0; j < cycle.size(); ++j) normal += mid(cycle[j]).cross(mid(cycle[(j + 1) % cycle.size()]));
+    if (normal.dot(outward) < 0) std::reverse(cycle.begin(), cycle.end());
+    ContourPolygon polygon;
+    polygon.count = static_cast<int>(cycle.size());
+    for (std::size_t j = 0; j < cycle.size(); ++j)
+      polygon.vertex[j] = edge_id(tet[static_cast<std::size_t>(cycle[j].first)], tet[static_cast<std::size_t>(cycle[j].second)]);
+    polygon.cell = cell;
+    polygon.tetrahedron = tet;
+    polygons.push_back(polygon);
+  };
+  // The six Kuhn tetrahedra of a cube `size` lattice steps wide.
+  auto march_cube = [&](std::uint64_t low, std::int64_t size) {
+    const auto cell = static_cast<std::uint64_t>(cell_of.size());
+    cell_of.push_back({low, size});
+    for (const auto& tet : kContourKuhnTetrahedra) {
+      std::array<std::uint64_t, 4> keys{};
+      for (int c = 0; c < 4; ++c) keys[static_cast<std::size_t>(c)] = corner_key(low, tet[static_cast<std::size_t>(c)], size);
+      march(keys, cell);
+    }
+  };
   std::vector<std::uint64_t> sorted_cells(cells.begin(), cells.end());
   std::sort(sorted_cells.begin(), sorted_cells.end());
-  for (std::uint64_t cell : sorted_cells) {
-    std::array<std::uint64_t, 8> key{};
-    std::array<char, 8> in{};
-    for (int c = 0; c < 8; ++c) {
-      key[static_cast<std::size_t>(c)] = corner_key(cell, c);
-      in[static_cast<std::size_t>(c)] = label.at(key[static_cast<std::size_t>(c)]);
-    }
-    auto corner = [](int c) { return Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1); };
-    for (const auto& tet : kContourKuhnTetrahedra) {
-      std::vector<int> ins, outs;
-      for (int c : tet) (in[static_cast<std::size_t>(c)] ? ins : outs).push_back(c);
-      if (ins.empty() || outs.empty()) continue;
-      Eigen::Vector3d in_centre = Eigen::Vector3d::Zero(), out_centre = Eigen::Vector3d::Zero();
-      for (int c : ins) in_centre += corner(c) / static_cast<double>(ins.size());
-      for (int c : outs) out_centre += corner(c) / static_cast<double>(outs.size());
-      const Eigen::Vector3d outward = out_centre - in_centre;
-      std::vector<std::pair<int, int>> cycle;
-      if (ins.size() == 1) cycle = {{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[0], outs[2]}};
-      else if (outs.size() == 1) cycle = {{ins[0], outs[0]}, {ins[1], outs[0]}, {ins[2], outs[0]}};
-      else cycle = {{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[1], outs[1]}, {ins[1], outs[0]}};
-      auto mid = [&](const std::pair<int, int>& p) { return Eigen::Vector3d(0.5 * (corner(p.first) + corner(p.second))); };
-      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-      for (std::size_t j = 0; j < cycle.size(); ++j) normal += mid(cycle[j]).cross(mid(cycle[(j + 1) % cycle.size()]));
-      if (normal.dot(outward) < 0) std::reverse(cycle.begin(), cycle.end());
-      ContourPolygon polygon;
-      polygon.count = static_cast<int>(cycle.size());
-      for (std::size_t j = 0; j < cycle.size(); ++j)
-        polygon.vertex[j] = edge_id(key[static_cast<std::size_t>(cycle[j].first)], key[static_cast<std::size_t>(cycle[j].second)]);
-      polygon.cell = cell;
-      polygon.tetrahedron = static_cast<int>(&tet - kContourKuhnTetrahedra.data());
-      polygons.push_back(polygon);
-    }
-  }
+  for (std::uint64_t cell : sorted_cells) march_cube(cell, ratio);
 
   // The crossings: the superset's intersections with the edge, sorted along it; between the
   // inside end and the outside end, the crossing after the last stretch found inside (binary
@@ -411,9 +453,9 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // near its end are tried there. Off every sheet: the bisection point.
   // Zero-area triangles of the superset cannot be crossed (and CGAL's segment-triangle
   // intersection requires a proper triangle): the tree holds the others, mapped back by index.
-  std::vector<ContourCrossing> crossings(edges.size());
-  std::atomic<std::int64_t> off_superset{0}, on_sheets{0}, after_bisection{0};
-  tbb::parallel_for(std::size_t{0}, edges.size(), [&](std::size_t e) {
+  // The crossings of every lattice edge met so far (by edge id), and those of the complex's edges.
+  std::vector<ContourCrossing> all_crossings, crossings;
+  auto cross_edge = [&](std::size_t e) {
     const Eigen::Vector3d a = grid.point(edges[e].first), b = grid.point(edges[e].second);
     const Eigen::Vector3d ab = b - a;
     using Hit = ContourTree::Intersection_and_primitive_id<ContourKernel::Segment_3>::Type;
@@ -434,7 +476,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     std::vector<std::pair<double, std::size_t>> distinct;
     for (const auto& h : along)
       if (distinct.empty() || h.first - distinct.back().first > merge) distinct.push_back(h);
-    ContourCrossing& x = crossings[e];
+    ContourCrossing& x = all_crossings[e];
     // The boundary lies in [low, high]: a is inside, b outside, and so are the probes.
     double low = 0, high = 1, lambda = 0.5;
     bool found = false;
@@ -590,14 +632,13 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         for (std::size_t q = 0; q < by_distance.size() && q < 24 && !placed; ++q)
           placed = try_sheet(by_distance[q].second, 0.5 * (low + high), low - margin, high + margin);
         if (placed) {
-          ++after_bisection;
+          x.after_bisection = true;
         } else {
           lambda = 0.5 * (low + high);
           found = false;
         }
       }
       if (placed) {
-        ++on_sheets;
         lambda = x.lambda;
       }
     } else if (!found) {
@@ -611,17 +652,283 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       const Eigen::Vector3d p = a + lambda * ab;
       const auto closest = tree.closest_point_and_primitive(ContourPoint(p.x(), p.y(), p.z()));
       x.triangle = proper_source[static_cast<std::size_t>(closest.second - proper_triangles.cbegin())];
-      ++off_superset;
+      x.off_superset = true;
     }
     // Strictly inside the edge, so that no triangle degenerates.
     lambda = std::clamp(lambda, 1e-6, 1 - 1e-6);
     x.position = a + lambda * ab;
     x.barycentric = contour_barycentric(x.position, triangles[x.triangle]);
-  });
-  stats.crossings_off_superset = off_superset;
-  stats.crossings_on_sheets = on_sheets;
-  stats.crossings_after_bisection = after_bisection;
-  stats.seconds_classify = seconds_since(classify_start);
+  };
+  auto cross_new_edges = [&]() {
+    const std::size_t from = all_crossings.size();
+    all_crossings.resize(edges.size());
+    tbb::parallel_for(from, edges.size(), cross_edge);
+  };
+  cross_new_edges();
+
+  // Adaptive cells (coarse_ratio > 1): the coarse cells where the contour bends by more than the
+  // crease angle or a vertex found no sheet are split into ratio^3 fine cells (with their
+  // neighbours too, twice as many fine cells and no better result on the examples); the smooth parts keep their coarse cells, whose vertices lie on the sheets all the
+  // same (the refinement toward the sheets makes their chords accurate). Conforming, so that the
+  // surface stays closed: each square face of the complex is triangulated by a rule that depends
+  // on the face alone. A face of a refined cell: its fine squares, each split along the
+  // diagonal from its lowest to its highest corner (the Kuhn diagonal every cube uses). A coarse
+  // face none of whose edges borders a refined cell: the same diagonal. Any other coarse face:
+  // a fan from its centre over its edges, split into fine steps where they border a refined
+  // cell. A coarse cell with such a face or a fine one (a transition cell) is coned from its
+  // centre over its faces' triangles; any other keeps its six Kuhn tetrahedra.
+  std::unordered_set<std::uint64_t> refined;
+  if (ratio > 1) {
+    const double crease_cos_coarse = std::cos(options.crease_angle_degrees * std::numbers::pi / 180);
+    // Without the sheets' equations a crossing's normal is that of its superset triangle.
+    const auto superset_normal = [&](std::size_t t) {
+      const Eigen::Vector3d a(triangles[t][0].x(), triangles[t][0].y(), triangles[t][0].z());
+      const Eigen::Vector3d b(triangles[t][1].x(), triangles[t][1].y(), triangles[t][1].z());
+      const Eigen::Vector3d c(triangles[t][2].x(), triangles[t][2].y(), triangles[t][2].z());
+      const Eigen::Vector3d n = (b - a).cross(c - a);
+      return n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : n;
+    };
+    std::unordered_set<std::uint64_t> bent;
+    for (std::size_t first = 0; first < polygons.size();) {
+      std::size_t end = first;
+      while (end < polygons.size() && polygons[end].cell == polygons[first].cell) ++end;
+      std::vector<int> corners;
+      for (std::size_t q = first; q < end; ++q)
+        corners.insert(corners.end(), polygons[q].vertex.begin(), polygons[q].vertex.begin() + polygons[q].count);
+      std::sort(corners.begin(), corners.end());
+      corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+      bool refine_cell = false;
+      std::vector<Eigen::Vector3d> normals;
+      for (std::size_t j = 0; !refine_cell && j < corners.size(); ++j) {
+        const ContourCrossing& xj = all_crossings[static_cast<std::size_t>(corners[j])];
+        if (sheet_crossing && (!xj.on_sheet || xj.normal.isZero())) refine_cell = true;
+        normals.push_back(xj.on_sheet ? xj.normal : superset_normal(xj.triangle));
+        for (std::size_t i = 0; !refine_cell && i < j; ++i) refine_cell = std::abs(normals[j].dot(normals[i])) < crease_cos_coarse;
+      }
+      if (refine_cell) bent.insert(cell_of[polygons[first].cell].low);
+      first = end;
+    }
+    refined = std::move(bent);
+  }
+  // The complex of the refined cells' fine cells and the coarse cells, its polygons, and the
+  // crossings of their edges (`crossings`, the polygons' vertex ids renumbered into it).
+  auto build_complex = [&]() {
+    stats.grid_cells_refined = static_cast<std::int64_t>(refined.size());
+    std::vector<std::uint64_t> sorted_refined(refined.begin(), refined.end());
+    std::sort(sorted_refined.begin(), sorted_refined.end());
+    // The fine lattice points of the refined cells.
+    {
+      std::vector<std::uint64_t> points;
+      points.reserve(sorted_refined.size() * static_cast<std::size_t>((ratio + 1) * (ratio + 1) * (ratio + 1)));
+      for (std::uint64_t cell : sorted_refined)
+        for (std::int64_t k = 0; k <= ratio; ++k)
+          for (std::int64_t j = 0; j <= ratio; ++j)
+            for (std::int64_t i = 0; i <= ratio; ++i) points.push_back(offset_key(cell, i, j, k));
+      label_all(std::move(points), 1);
+    }
+    const std::array<std::uint64_t, 3> unit{grid.key(1, 0, 0), grid.key(0, 1, 0), grid.key(0, 0, 1)};
+    auto cell_in_grid = [&](const std::array<std::int64_t, 3>& j) {
+      for (std::size_t d = 0; d < 3; ++d)
+        if (j[d] < 0 || j[d] > grid.n[d] - 1 - ratio) return false;
+      return true;
+    };
+    auto is_refined = [&](const std::array<std::int64_t, 3>& j) { return cell_in_grid(j) && refined.count(grid.key(j[0], j[1], j[2])) > 0; };
+    // The coarse edge from lattice point p along `axis` borders a refined cell.
+    auto edge_split = [&](std::uint64_t p, int axis) {
+      const auto i = grid.index(p);
+      const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+      for (int sb = 0; sb < 2; ++sb)
+        for (int sc = 0; sc < 2; ++sc) {
+          std::array<std::int64_t, 3> j = i;
+          j[static_cast<std::size_t>(b)] -= sb * ratio;
+          j[static_cast<std::size_t>(c)] -= sc * ratio;
+          if (is_refined(j)) return true;
+        }
+      return false;
+    };
+    // The face of lower corner p across `axis`: fine (a refined cell on either side), Kuhn or fan.
+    enum class FaceKind { Fine, Kuhn, Fan };
+    auto face_kind = [&](std::uint64_t p, int axis) {
+      auto i = grid.index(p);
+      if (is_refined(i)) return FaceKind::Fine;
+      i[static_cast<std::size_t>(axis)] -= ratio;
+      if (is_refined(i)) return FaceKind::Fine;
+      const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+      const std::uint64_t pb = p + ratio * unit[static_cast<std::size_t>(b)], pc = p + ratio * unit[static_cast<std::size_t>(c)];
+      if (edge_split(p, b) || edge_split(p, c) || edge_split(pb, c) || edge_split(pc, b)) return FaceKind::Fan;
+      return FaceKind::Kuhn;
+    };
+    // The face's triangles (lattice keys), and the lattice points they use.
+    auto face_triangles = [&](std::uint64_t p, int axis, std::vector<std::array<std::uint64_t, 3>>& out_triangles) {
+      const int b = std::min((axis + 1) % 3, (axis + 2) % 3), c = std::max((axis + 1) % 3, (axis + 2) % 3);
+      const std::uint64_t eb = unit[static_cast<std::size_t>(b)], ec = unit[static_cast<std::size_t>(c)];
+      const auto r = static_cast<std::uint64_t>(ratio);
+      const FaceKind kind = face_kind(p, axis);
+      if (kind == FaceKind::Fine) {
+        for (std::uint64_t v = 0; v < r; ++v)
+          for (std::uint64_t u = 0; u < r; ++u) {
+            const std::uint64_t q = p + u * eb + v * ec;
+            out_triangles.push_back({q, q + eb, q + eb + ec});
+            out_triangles.push_back({q, q + ec, q + eb + ec});
+          }
+      } else if (kind == FaceKind::Kuhn) {
+        out_triangles.push_back({p, p + r * eb, p + r * eb + r * ec});
+        out_triangles.push_back({p, p + r * ec, p + r * eb + r * ec});
+      } else {
+        const std::uint64_t centre = p + (r / 2) * (eb + ec);
+        // The border, counter-clockwise in (b, c): four edges, each whole or in fine steps.
+        const std::array<std::pair<std::uint64_t, int>, 4> sides{{{p, b}, {p + r * eb, c}, {p + r * ec, b}, {p, c}}};
+        std::vector<std::uint64_t> loop;
+        for (int s = 0; s < 4; ++s) {
+          const auto [start, along] = sides[static_cast<std::size_t>(s)];
+          const std::uint64_t step = unit[static_cast<std::size_t>(along)];
+          const bool forward = s < 2;
+          const std::uint64_t from = forward ? start : start + r * step;
+          const std::int64_t count = edge_split(start, along) ? ratio : 1;
+          const std::uint64_t stride = (r / static_cast<std::uint64_t>(count)) * step;
+          for (std::int64_t k = 0; k < count; ++k)
+            loop.push_back(forward ? from + static_cast<std::uint64_t>(k) * stride : from - static_cast<std::uint64_t>(k) * stride);
+        }
+        for (std::size_t k = 0; k < loop.size(); ++k) out_triangles.push_back({centre, loop[k], loop[(k + 1) % loop.size()]});
+      }
+      return kind;
+    };
+    // The lattice points a coarse cell's tetrahedra use, and whether it is a transition cell.
+    auto cell_points = [&](std::uint64_t cell, std::vector<std::uint64_t>& corners, std::vector<std::uint64_t>& centres) {
+      bool transition = false;
+      std::vector<std::array<std::uint64_t, 3>> face;
+      for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+          face.clear();
+          const std::uint64_t p = side ? cell + static_cast<std::uint64_t>(ratio) * unit[static_cast<std::size_t>(axis)] : cell;
+          const FaceKind kind = face_triangles(p, axis, face);
+          transition = transition || kind != FaceKind::Kuhn;
+          for (const auto& t : face)
+            for (std::uint64_t k : t) corners.push_back(k);
+          if (kind == FaceKind::Fan) centres.push_back(face.front()[0]);
+        }
+      if (transition) centres.push_back(offset_key(cell, ratio / 2, ratio / 2, ratio / 2));
+      return transition;
+    };
+    // Coarse cells of the complex: the unrefined ones of the coarse grid, and any the surface
+    // reaches across a face of the complex's border whose points disagree (fan faces and fine
+    // faces have points the coarse grid did not look at).
+    std::unordered_set<std::uint64_t> coarse;
+    for (std::uint64_t cell : sorted_cells)
+      if (!refined.count(cell)) coarse.insert(cell);
+    std::vector<std::uint64_t> grow_from(sorted_refined);
+    for (std::uint64_t cell : sorted_cells)
+      if (!refined.count(cell)) grow_from.push_back(cell);
+    while (!grow_from.empty()) {
+      std::vector<std::uint64_t> corners, centres;
+      for (std::uint64_t cell : grow_from)
+        if (!refined.count(cell)) cell_points(cell, corners, centres);
+      label_all(std::move(corners), ratio);
+      label_all(std::move(centres), ratio / 2);
+      std::vector<std::uint64_t> grown;
+      std::vector<std::array<std::uint64_t, 3>> face;
+      for (std::uint64_t cell : grow_from) {
+        const auto i = grid.index(cell);
+        for (int axis = 0; axis < 3; ++axis)
+          for (int side = 0; side < 2; ++side) {
+            std::array<std::int64_t, 3> j = i;
+            j[static_cast<std::size_t>(axis)] += side ? ratio : -ratio;
+            if (!cell_in_grid(j)) continue;
+            const std::uint64_t neighbour = grid.key(j[0], j[1], j[2]);
+            if (refined.count(neighbour) || coarse.count(neighbour)) continue;
+            face.clear();
+            face_triangles(side ? neighbour : cell, axis, face);
+            int in = 0, count = 0;
+            for (const auto& t : face)
+              for (std::uint64_t k : t) {
+                in += label.at(k);
+                ++count;
+              }
+            if (in == 0 || in == count) continue;
+            coarse.insert(neighbour);
+            grown.push_back(neighbour);
+          }
+      }
+      if (static_cast<std::int64_t>(coarse.size() + refined.size()) > options.max_cells)
+        throw InvalidInput("the contouring grid needs more than " + std::to_string(options.max_cells) + " cells; choose a larger cell size",
+                           "cell_size");
+      grow_from = std::move(grown);
+    }
+    // The complex's tetrahedra, cell by cell: fine cells of the refined ones, coarse cells Kuhn
+    // or coned from their centres.
+    polygons.clear();
+    cell_of.clear();
+    std::vector<std::pair<std::uint64_t, std::int64_t>> complex;
+    for (std::uint64_t cell : coarse) complex.emplace_back(cell, ratio);
+    for (std::uint64_t cell : sorted_refined)
+      for (std::int64_t k = 0; k < ratio; ++k)
+        for (std::int64_t j = 0; j < ratio; ++j)
+          for (std::int64_t i = 0; i < ratio; ++i) complex.emplace_back(offset_key(cell, i, j, k), 1);
+    std::sort(complex.begin(), complex.end());
+    std::vector<std::array<std::uint64_t, 3>> face;
+    for (const auto& [low, size] : complex) {
+      bool transition = false;
+      if (size == ratio)
+        for (int axis = 0; axis < 3 && !transition; ++axis)
+          for (int side = 0; side < 2 && !transition; ++side)
+            transition = face_kind(side ? low + static_cast<std::uint64_t>(ratio) * unit[static_cast<std::size_t>(axis)] : low, axis) != FaceKind::Kuhn;
+      if (!transition) {
+        march_cube(low, size);
+        continue;
+      }
+      const auto cell = static_cast<std::uint64_t>(cell_of.size());
+      cell_of.push_back({low, size});
+      const std::uint64_t centre = offset_key(low, ratio / 2, ratio / 2, ratio / 2);
+      for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+          face.clear();
+          face_triangles(side ? low + static_cast<std::uint64_t>(ratio) * unit[static_cast<std::size_t>(axis)] : low, axis, face);
+          for (const auto& t : face) march({centre, t[0], t[1], t[2]}, cell);
+        }
+    }
+    stats.grid_cells = static_cast<std::int64_t>(complex.size());
+    // Crossings of the edges the complex uses; those of the coarse grid's edges are kept.
+    cross_new_edges();
+    std::vector<int> renumber(edges.size(), -1);
+    crossings.clear();
+    for (ContourPolygon& polygon : polygons)
+      for (int j = 0; j < polygon.count; ++j) {
+        int& v = polygon.vertex[static_cast<std::size_t>(j)];
+        if (renumber[static_cast<std::size_t>(v)] < 0) {
+          renumber[static_cast<std::size_t>(v)] = static_cast<int>(crossings.size());
+          crossings.push_back(all_crossings[static_cast<std::size_t>(v)]);
+        }
+        v = renumber[static_cast<std::size_t>(v)];
+      }
+  };
+  // With adaptive cells, the coarse cells holding edges that the verification finds farther
+  // than the tolerance from the boundary (a feature between the coarse corners: a thin fin, a
+  // crease the coarse crossings did not show) and their neighbours are refined too, and the
+  // contour is made again; at most twice.
+  const int max_adaptations = ratio > 1 ? 2 : 0;
+  std::vector<Eigen::Vector3d> beyond_points;
+  double checks_total = 0;
+  for (int adaptation = 0;; ++adaptation) {
+  if (ratio > 1) {
+    build_complex();
+  } else {
+    crossings = all_crossings;
+    stats.grid_cells = static_cast<std::int64_t>(cells.size());
+  }
+  stats.grid_corners = static_cast<std::int64_t>(label.size());
+  stats.crossings_on_sheets = stats.crossings_after_bisection = stats.crossings_off_superset = 0;
+  stats.crease_repairs = 0;
+  out.mesh = TriangleMesh();
+  out.extra.clear();
+  out.source_vertex.clear();
+  stats.grid_corners_inferred = inferred;
+  for (const ContourCrossing& x : crossings) {
+    stats.crossings_on_sheets += x.on_sheet ? 1 : 0;
+    stats.crossings_after_bisection += x.after_bisection ? 1 : 0;
+    stats.crossings_off_superset += x.off_superset ? 1 : 0;
+  }
+  stats.seconds_classify = seconds_since(classify_start) - checks_total;
+  beyond_points.clear();
 
   // The mesh: parameters (and extra) from the sheet, or interpolated in the crossing's superset
   // triangle.
@@ -699,7 +1006,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     // The fan around the crease point of one cell: false (nothing emitted) unless the cell's
     // triangles `local` form one disk and the fan is valid.
     using HalfSpace = std::pair<Eigen::Vector3d, double>;
-    auto crease_fan = [&](const std::vector<std::array<int, 3>>& local, const std::vector<int>& corners, const std::vector<HalfSpace>& region) {
+    auto crease_fan = [&](const std::vector<std::array<int, 3>>& local, const std::vector<int>& corners, const std::vector<HalfSpace>& region,
+                          bool must_snap) {
       // The disk's border: directed edges whose reverse is not in the cell, one loop.
       std::set<std::pair<int, int>> directed;
       for (const auto& t : local)
@@ -799,8 +1107,9 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       }
       // With refinement, a fan only around a point on a real crease: where the crossings' normals
       // differ because a coarse cell spans a curved part of one smooth surface, the tangent planes
-      // meet off the surface and the plain triangles, refined, are better.
-      if (snap_creases && !on_crease) return false;
+      // meet off the surface and the plain triangles, refined, are better. The fine cells of
+      // adaptive contouring are as fine as the uniform grid's, whose fans need no snapping.
+      if (must_snap && !on_crease) return false;
       // Each fan triangle faces the way of the disk (area-weighted) or of the cell's triangle it
       // replaces along the border (a sliver standing on the crease may face sideways): a fold of
       // the fan would be a self-intersection.
@@ -875,17 +1184,16 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       }
       const bool fans_allowed = !unfanned_cells.count(cell);
       crease = crease && smallest_cos < crease_cos && fans_allowed;
-      const auto index = grid.index(cell);
-      const Eigen::Vector3d low = grid.origin + grid.h * Eigen::Vector3d(static_cast<double>(index[0]), static_cast<double>(index[1]),
-                                                                       static_cast<double>(index[2]));
+      const Eigen::Vector3d low = grid.point(cell_of[cell].low);
+      const double width = static_cast<double>(cell_of[cell].size) * grid.h;
       if (crease) {
         std::vector<HalfSpace> box;
         for (int d = 0; d < 3; ++d) {
           const Eigen::Vector3d e = Eigen::Vector3d::Unit(d);
-          box.emplace_back(e, low(d) + grid.h);
+          box.emplace_back(e, low(d) + width);
           box.emplace_back(-e, -low(d));
         }
-        crease = crease_fan(local, corners, box);
+        crease = crease_fan(local, corners, box, snap_creases && (ratio == 1 || cell_of[cell].size > 1));
         if (crease) {
           ++stats.crease_vertices;
           if (!crease_sheets.count(static_cast<int>(result.num_vertices()) - 1)) ++stats.crease_cells_unsnapped;
@@ -920,12 +1228,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         }
         if (sharp && own_cos < crease_cos) {
           // The tetrahedron's four faces, outward.
-          const auto& tet = kContourKuhnTetrahedra[static_cast<std::size_t>(polygon.tetrahedron)];
           std::array<Eigen::Vector3d, 4> corner;
-          for (int i = 0; i < 4; ++i) {
-            const int c = tet[static_cast<std::size_t>(i)];
-            corner[static_cast<std::size_t>(i)] = low + grid.h * Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-          }
+          for (int i = 0; i < 4; ++i) corner[static_cast<std::size_t>(i)] = grid.point(polygon.tetrahedron[static_cast<std::size_t>(i)]);
           std::vector<HalfSpace> faces_of_tet;
           for (int i = 0; i < 4; ++i) {
             const Eigen::Vector3d& p0 = corner[static_cast<std::size_t>((i + 1) % 4)];
@@ -934,7 +1238,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             n.normalize();
             faces_of_tet.emplace_back(n, n.dot(p0));
           }
-          if (crease_fan(own, own_corners, faces_of_tet)) {
+          if (crease_fan(own, own_corners, faces_of_tet, snap_creases && (ratio == 1 || cell_of[cell].size > 1))) {
             ++stats.crease_vertices;
             if (!crease_sheets.count(static_cast<int>(result.num_vertices()) - 1)) ++stats.crease_cells_unsnapped;
             continue;
@@ -1099,6 +1403,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         }
         std::vector<std::pair<std::uint64_t, Eigen::Vector3d>> checks(edge_normal.begin(), edge_normal.end());
         std::atomic<std::int64_t> beyond{0};
+        beyond_points.clear();
+        std::mutex beyond_mutex;
         const double distance = options.verification_distance * diagonal;
         tbb::parallel_for(std::size_t{0}, checks.size(), [&](std::size_t i) {
           const auto& [key, normal] = checks[i];
@@ -1111,7 +1417,11 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           const Eigen::Vector3d step = distance * normal.normalized();
           queries += 2;
           const std::optional<bool> out = inside(middle + step), in = inside(middle - step);
-          if (!out || !in || *out || !*in) ++beyond;
+          if (!out || !in || *out || !*in) {
+            ++beyond;
+            const std::lock_guard<std::mutex> lock(beyond_mutex);
+            beyond_points.push_back(middle);
+          }
         });
         stats.refinement_edges_verified = static_cast<std::int64_t>(checks.size());
         stats.refinement_edges_beyond_tolerance = beyond;
@@ -1177,8 +1487,32 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     if (!changed) break;
     ++stats.crease_repairs;
   }
-  stats.membership_queries = queries;
   stats.seconds_checks = seconds_since(checks_start);
+  checks_total += stats.seconds_checks;
+  if (adaptation >= max_adaptations || beyond_points.empty()) break;
+  const std::size_t refined_before = refined.size();
+  for (const Eigen::Vector3d& p : beyond_points) {
+    std::array<std::int64_t, 3> i{};
+    for (std::size_t d = 0; d < 3; ++d)
+      i[d] = ratio * static_cast<std::int64_t>(std::floor((p[static_cast<Eigen::Index>(d)] - grid.origin[static_cast<Eigen::Index>(d)]) / coarse_h));
+    // Where the edge lies in fine cells already, refining more would not change it.
+    if (refined.count(grid.key(std::clamp<std::int64_t>(i[0], 0, grid.n[0] - 1), std::clamp<std::int64_t>(i[1], 0, grid.n[1] - 1),
+                               std::clamp<std::int64_t>(i[2], 0, grid.n[2] - 1))))
+      continue;
+    for (std::int64_t dk = -1; dk <= 1; ++dk)
+      for (std::int64_t dj = -1; dj <= 1; ++dj)
+        for (std::int64_t di = -1; di <= 1; ++di) {
+          const std::array<std::int64_t, 3> j{i[0] + ratio * di, i[1] + ratio * dj, i[2] + ratio * dk};
+          bool in_grid = true;
+          for (std::size_t d = 0; d < 3; ++d) in_grid = in_grid && j[d] >= 0 && j[d] <= grid.n[d] - 1 - ratio;
+          if (in_grid) refined.insert(grid.key(j[0], j[1], j[2]));
+        }
+  }
+  if (refined.size() == refined_before) break;
+  ++stats.grid_adaptations;
+  }
+  stats.seconds_checks = checks_total;
+  stats.membership_queries = queries;
   if (options.progress) options.progress->end_phase();
   return out;
 }

@@ -117,6 +117,70 @@ TEST(ImageContouring, InferredLabelsGiveTheSameContourWithFewerQueries) {
   }
 }
 
+// Adaptive cells (coarse_ratio 4): a cube turned off the grid's axes, its superset its own faces,
+// has creases along its twelve edges. Only the coarse cells near them are split into fine ones,
+// and the complex of fine cells, coned transition cells and Kuhn-split coarse cells is
+// conforming: the contour is one closed, oriented sphere whatever the cells next to each other,
+// every vertex lies on the cube, and the chamfers along the edges are those of the fine cells.
+TEST(ImageContouring, AdaptiveCellsAreFineOnlyAtTheCreasesAndTheContourStaysClosed) {
+  const Eigen::Matrix3d turn = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX())).toRotationMatrix();
+  TriangleMesh superset;
+  const int n = 6;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int base = static_cast<int>(superset.num_vertices());
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+          Eigen::Vector3d p;
+          p[axis] = side ? 0.5 : -0.5;
+          p[(axis + 1) % 3] = -0.5 + static_cast<double>(i) / n;
+          p[(axis + 2) % 3] = -0.5 + static_cast<double>(j) / n;
+          superset.add_vertex(turn * p, {0, 0, 0});
+        }
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const int a = base + i * (n + 1) + j;
+          superset.add_triangle(a, a + n + 1, a + n + 2, Part::SweepFace);
+          superset.add_triangle(a, a + n + 2, a + 1, Part::SweepFace);
+        }
+    }
+  const ImageMembershipTest inside = [&](const Eigen::Vector3d& x) {
+    return std::optional<bool>((turn.transpose() * x).cwiseAbs().maxCoeff() <= 0.5);
+  };
+  std::array<TrimmedBoundary, 3> b;  // uniform fine, uniform coarse, adaptive
+  for (int k = 0; k < 3; ++k) {
+    ImageContouringOptions options;
+    options.cell_size = k == 1 ? 0.04 : 0.01;
+    options.coarse_ratio = k == 2 ? 4 : 1;
+    b[static_cast<std::size_t>(k)] = contour_image_boundary(superset, {}, inside, options);
+    const SupersetTrimmingStats& st = b[static_cast<std::size_t>(k)].stats;
+    EXPECT_TRUE(st.closed) << k << " open at " << st.open_at;
+    EXPECT_TRUE(st.oriented) << k;
+    EXPECT_TRUE(st.self_intersection_free) << k << ": " << st.self_intersecting_pairs;
+    EXPECT_EQ(st.components, 1) << k;
+    EXPECT_EQ(contour_euler_characteristic(b[static_cast<std::size_t>(k)].mesh), 2) << k;
+    for (const auto& x : b[static_cast<std::size_t>(k)].mesh.positions)
+      EXPECT_NEAR((turn.transpose() * x).cwiseAbs().maxCoeff(), 0.5, 1e-9) << k;
+  }
+  const SupersetTrimmingStats &fine = b[0].stats, &coarse = b[1].stats, &adaptive = b[2].stats;
+  EXPECT_EQ(fine.grid_cells_refined, 0);
+  EXPECT_GT(adaptive.grid_cells_refined, 0);
+  // Fine cells only near the edges: far fewer cells than the uniform fine grid.
+  // Fine cells only near the edges: far fewer membership tests and triangles than the uniform
+  // fine grid.
+  EXPECT_LT(adaptive.membership_queries, fine.membership_queries / 2);
+  EXPECT_LT(b[2].mesh.num_triangles(), b[0].mesh.num_triangles() / 2);
+  // The volume lost to chamfers along the 12 edges (about 12 x h^2 / 4 for cells of size h):
+  // the adaptive contour's is the fine grid's, not the coarse one's.
+  const double diagonal = std::sqrt(3.0);
+  EXPECT_LT(1 - fine.volume, 12 * 0.5 * std::pow(0.01 * diagonal, 2));
+  EXPECT_LT(1 - adaptive.volume, 12 * 0.5 * std::pow(0.01 * diagonal, 2));
+  EXPECT_GT(1 - coarse.volume, 2 * (1 - adaptive.volume));
+  ImageContouringOptions odd;
+  odd.coarse_ratio = 3;
+  EXPECT_THROW(contour_image_boundary(superset, {}, inside, odd), InvalidInput);
+}
+
 TEST(ImageContouring, RefusesBadOptions) {
   const TriangleMesh superset = contour_sphere_and_inner_sheet();
   const ImageMembershipTest inside = [](const Eigen::Vector3d&) { return std::optional<bool>(false); };

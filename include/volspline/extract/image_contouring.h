@@ -47,6 +47,13 @@ struct ImageContouringOptions {
   double superset_error = 2e-3;
   /// Bisection steps along a grid edge the superset does not cross.
   int bisection_steps = 12;
+  /// Adaptive cells: 1, a uniform grid of `cell_size`; an even number up to 16, cells this many
+  /// times wider, split into ratio^3 cells of `cell_size` where the contour bends by more than
+  /// `crease_angle_degrees` or a vertex found no sheet (and next to such cells), with coned
+  /// transition cells in between so that the complex stays conforming (docs/envelopes.md,
+  /// "Adaptive cells"). Meant with the refinement toward the sheets, which makes the coarse
+  /// cells' chords accurate.
+  int coarse_ratio = 1;
   /// Budget of grid cells (InvalidInput beyond it: choose a larger cell size).
   std::int64_t max_cells = 20000000;
   /// Tetrahedra whose vertices' sheet normals differ by more than this get a crease vertex

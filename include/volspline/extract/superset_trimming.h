@@ -59,6 +59,12 @@ struct SupersetTrimmingStats {
                crossings_after_bisection = 0, crease_vertices = 0, crease_flips = 0;
   /// Contouring: rounds in which crease flips or fans that made self-intersecting faces were undone.
   std::int64_t crease_repairs = 0;
+  /// Contouring with adaptive cells (ImageContouringOptions::coarse_ratio > 1): coarse cells split
+  /// into fine ones (grid_cells counts the complex's cells, coarse and fine).
+  std::int64_t grid_cells_refined = 0;
+  /// ... and the times the contour was made again with more cells refined where the verification
+  /// found edges farther than the tolerance from the boundary.
+  std::int64_t grid_adaptations = 0;
   /// Contouring with refinement toward the sheets (extract/sheet_refinement.h): the tolerance
   /// (absolute), rounds, edges split, edges whose sheet point was not found, edges left above
   /// the tolerance and the largest distance left.

@@ -70,6 +70,12 @@ struct SweptEnvelopeOptions {
   /// are chamfered and counted (`refinement_unresolved_edges`). docs/envelopes.md, "Refinement
   /// toward the sheets".
   double coarse_cell_factor = 0;
+  /// Adaptive cells instead (an even number up to 16; 0: not): cells this many times the grid
+  /// of contour_cell_factor, split into it where the contour bends by more than the crease angle
+  /// (ImageContouringOptions::coarse_ratio), edges refined toward the sheets as with
+  /// coarse_cell_factor. Kept when closed, oriented and free of self-intersections (otherwise the
+  /// uniform grid of contour_cell_factor is used, unrefined). docs/envelopes.md, "Adaptive cells".
+  int adaptive_ratio = 0;
   double refinement_factor = 0.25;
   ImageContouringOptions contouring;
   Progress* progress = nullptr;
