@@ -24,12 +24,14 @@ SweptSolid swept_bench_example(int which) {
   }
 }
 
-void BM_SweptEnvelope(benchmark::State& state, int which, bool trim, JacobianBoundMethod bounds, double coarse_cells = 0) {
+void BM_SweptEnvelope(benchmark::State& state, int which, bool trim, JacobianBoundMethod bounds, double coarse_cells = 0,
+                      int adaptive_ratio = 0) {
   const auto patches = swept_patches(swept_bench_example(which));
   SweptEnvelopeOptions options;
   options.trim = trim;
   options.bounds = bounds;
   options.coarse_cell_factor = coarse_cells;
+  options.adaptive_ratio = adaptive_ratio;
   SweptEnvelope e;
   for (auto _ : state) {
     e = swept_envelope(patches, options);
@@ -46,6 +48,8 @@ void BM_SweptEnvelope(benchmark::State& state, int which, bool trim, JacobianBou
     state.counters["volume"] = s.trimming.volume;
     state.counters["grid_cells"] = static_cast<double>(s.trimming.grid_cells);
     state.counters["queries"] = static_cast<double>(s.trimming.membership_queries);
+    state.counters["cells_refined"] = static_cast<double>(s.trimming.grid_cells_refined);
+    state.counters["beyond_tol"] = static_cast<double>(s.trimming.refinement_edges_beyond_tolerance);
   }
 }
 constexpr auto kBezier = JacobianBoundMethod::Bezier;
@@ -62,6 +66,16 @@ BENCHMARK_CAPTURE(BM_SweptEnvelope, annulus_trimmed, 6, true, kBezier)->Unit(ben
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig4_torus_coarse16, 0, true, kBezier, 16.0)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig7_turning_folded_cylinder_coarse16, 3, true, kBezier, 16.0)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, capsule_coarse16, 5, true, kBezier, 16.0)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// Adaptive cells (`--adaptive-cells 4`): 12 x the tolerance, 3 x at the creases; the same
+// examples as the default grid above (the baseline of the ratio).
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig4_torus_adaptive4, 0, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig5_tumbling_cylinder_adaptive4, 1, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig6_folded_cube_adaptive4, 2, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig7_turning_folded_cylinder_adaptive4, 3, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig8_tumbling_folded_cube_adaptive4, 4, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, capsule_adaptive4, 5, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, annulus_adaptive4, 6, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig6_superset_bezier, 2, false, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig6_superset_cone_baseline, 2, false, kCone)->Unit(benchmark::kMillisecond)->Iterations(1);
