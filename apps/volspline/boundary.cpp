@@ -208,6 +208,7 @@ void run_boundary(const BoundaryArguments& a) {
                                     {"grid_corners", ts.grid_corners},
                                     {"grid_corners_inferred", ts.grid_corners_inferred},
                                     {"membership_queries", ts.membership_queries},
+                                    {"membership_queries_remembered", ts.membership_queries_remembered},
                                     {"crossings_on_sheets", ts.crossings_on_sheets},
                                     {"crossings_off_superset", ts.crossings_off_superset},
                                     {"crease_vertices", ts.crease_vertices},

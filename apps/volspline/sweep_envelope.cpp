@@ -60,6 +60,7 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                      {"pieces_duplicate", t.pieces_duplicate},
                      {"pieces_undecided", t.pieces_undecided},
                      {"membership_queries", t.membership_queries},
+                     {"membership_queries_remembered", t.membership_queries_remembered},
                      {"method", s.trimmed_by == EnvelopeTrimming::Arrangement ? "arrangement" : "contouring"},
                      {"grid_cell_size", t.cell_size},
                      {"grid_cells", t.grid_cells},

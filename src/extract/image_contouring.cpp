@@ -26,6 +26,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <tbb/concurrent_unordered_map.h>
 #include <tbb/parallel_for.h>
 
 #include "volspline/core/elapsed_time.h"
@@ -46,6 +47,15 @@ using ContourClock = std::chrono::steady_clock;
 
 // Grid points o + h (i, j, k), 0 <= i < n[0] ..., one 64-bit key each; a cell is keyed by its
 // lowest corner.
+// A point's exact coordinates as a hash key.
+struct ExactPointHash {
+  std::size_t operator()(const std::array<double, 3>& p) const {
+    std::size_t h = 0;
+    for (const double c : p) h = h * 0x9e3779b97f4a7c15ull + std::hash<double>{}(c);
+    return h;
+  }
+};
+
 struct ContourGrid {
   Eigen::Vector3d origin;
   double h = 1;
@@ -231,6 +241,24 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     ++queries;
     const std::optional<bool> answer = inside(x);
     return !answer || *answer;
+  };
+  // The checks (crease points, refinement, verification) are made again in every repair round
+  // and adaptation, mostly of unchanged parts, so they ask the same points again: their answers
+  // are remembered by the point's exact coordinates (the test is deterministic). The grid's
+  // corners and crossings are asked once each and need no memory.
+  tbb::concurrent_unordered_map<std::array<double, 3>, signed char, ExactPointHash> remembered;
+  std::atomic<std::int64_t> remembered_queries{0};
+  auto checked_inside = [&](const Eigen::Vector3d& x) -> std::optional<bool> {
+    // + 0.0 makes -0 and +0 one key.
+    const std::array<double, 3> key{x.x() + 0.0, x.y() + 0.0, x.z() + 0.0};
+    if (const auto it = remembered.find(key); it != remembered.end()) {
+      ++remembered_queries;
+      return it->second < 0 ? std::nullopt : std::optional<bool>(it->second == 1);
+    }
+    ++queries;
+    const std::optional<bool> answer = inside(x);
+    remembered.emplace(key, static_cast<signed char>(answer ? (*answer ? 1 : 0) : -1));
+    return answer;
   };
   auto offset_key = [&](std::uint64_t key, std::int64_t di, std::int64_t dj, std::int64_t dk) {
     const auto i = grid.index(key);
@@ -908,6 +936,29 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   const int max_adaptations = ratio > 1 ? 2 : 0;
   std::vector<Eigen::Vector3d> beyond_points;
   double checks_total = 0;
+  // Refines the coarse cells holding `beyond_points` and their neighbours; false if all were
+  // refined already.
+  auto refine_cells_at = [&] {
+    const std::size_t refined_before = refined.size();
+    for (const Eigen::Vector3d& p : beyond_points) {
+      std::array<std::int64_t, 3> i{};
+      for (std::size_t d = 0; d < 3; ++d)
+        i[d] = ratio * static_cast<std::int64_t>(std::floor((p[static_cast<Eigen::Index>(d)] - grid.origin[static_cast<Eigen::Index>(d)]) / coarse_h));
+      // Where the edge lies in fine cells already, refining more would not change it.
+      if (refined.count(grid.key(std::clamp<std::int64_t>(i[0], 0, grid.n[0] - 1), std::clamp<std::int64_t>(i[1], 0, grid.n[1] - 1),
+                                 std::clamp<std::int64_t>(i[2], 0, grid.n[2] - 1))))
+        continue;
+      for (std::int64_t dk = -1; dk <= 1; ++dk)
+        for (std::int64_t dj = -1; dj <= 1; ++dj)
+          for (std::int64_t di = -1; di <= 1; ++di) {
+            const std::array<std::int64_t, 3> j{i[0] + ratio * di, i[1] + ratio * dj, i[2] + ratio * dk};
+            bool in_grid = true;
+            for (std::size_t d = 0; d < 3; ++d) in_grid = in_grid && j[d] >= 0 && j[d] <= grid.n[d] - 1 - ratio;
+            if (in_grid) refined.insert(grid.key(j[0], j[1], j[2]));
+          }
+    }
+    return refined.size() > refined_before;
+  };
   for (int adaptation = 0;; ++adaptation) {
   if (ratio > 1) {
     build_complex();
@@ -986,6 +1037,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // Crossings whose edges are not refined: corners of faces that refinement made intersect.
   std::set<int> unrefined_vertices;
   const std::int64_t max_rounds = 4;
+  bool adapted = false;
   for (std::int64_t round = 0;; ++round) {
     result = crossing_vertices;
     out.extra = crossing_extra;
@@ -1130,7 +1182,11 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       // that does not belong to the boundary there (an interior sheet meeting it) fails this.
       if (disk_normal.norm() > 0) {
         const Eigen::Vector3d step = 0.25 * reach * disk_normal.normalized();
-        if (is_inside(apex + step) || !is_inside(apex - step)) return false;
+        auto in = [&](const Eigen::Vector3d& x) {
+          const std::optional<bool> answer = checked_inside(x);
+          return !answer || *answer;
+        };
+        if (in(apex + step) || !in(apex - step)) return false;
       }
       std::size_t nearest = 0;
       for (std::size_t j = 1; j < corners.size(); ++j)
@@ -1364,10 +1420,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       SheetRefinementOptions refinement;
       refinement.tolerance = options.refinement_tolerance * diagonal;
       refinement.shortest_edge = 1e-3 * grid.h;
-      refinement.inside = [&](const Eigen::Vector3d& x) {
-        ++queries;
-        return inside(x);
-      };
+      refinement.inside = checked_inside;
       refinement.check_distance = 0.25 * reach;
       const std::size_t before = sheet_vertices.size();
       const SheetRefinementStats r = refine_to_sheets(result, sheet_vertices, sheet_crossing_from, refinement, &face_origin);
@@ -1415,8 +1468,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             return;
           }
           const Eigen::Vector3d step = distance * normal.normalized();
-          queries += 2;
-          const std::optional<bool> out = inside(middle + step), in = inside(middle - step);
+          const std::optional<bool> out = checked_inside(middle + step), in = checked_inside(middle - step);
           if (!out || !in || *out || !*in) {
             ++beyond;
             const std::lock_guard<std::mutex> lock(beyond_mutex);
@@ -1449,6 +1501,12 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       out.source_vertex.resize(static_cast<std::size_t>(used));
       for (auto& t : result.triangles)
         for (int& v : t) v = renumber[static_cast<std::size_t>(v)];
+    }
+    // Where the first round's verification already asks for finer cells, the contour is made
+    // again: the self-intersection check and its repairs would be undone.
+    if (round == 0 && adaptation < max_adaptations && !beyond_points.empty() && refine_cells_at()) {
+      adapted = true;
+      break;
     }
     std::vector<std::pair<std::size_t, std::size_t>> intersecting;
     measure_trimmed_boundary(result, stats, &intersecting);
@@ -1489,30 +1547,12 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   }
   stats.seconds_checks = seconds_since(checks_start);
   checks_total += stats.seconds_checks;
-  if (adaptation >= max_adaptations || beyond_points.empty()) break;
-  const std::size_t refined_before = refined.size();
-  for (const Eigen::Vector3d& p : beyond_points) {
-    std::array<std::int64_t, 3> i{};
-    for (std::size_t d = 0; d < 3; ++d)
-      i[d] = ratio * static_cast<std::int64_t>(std::floor((p[static_cast<Eigen::Index>(d)] - grid.origin[static_cast<Eigen::Index>(d)]) / coarse_h));
-    // Where the edge lies in fine cells already, refining more would not change it.
-    if (refined.count(grid.key(std::clamp<std::int64_t>(i[0], 0, grid.n[0] - 1), std::clamp<std::int64_t>(i[1], 0, grid.n[1] - 1),
-                               std::clamp<std::int64_t>(i[2], 0, grid.n[2] - 1))))
-      continue;
-    for (std::int64_t dk = -1; dk <= 1; ++dk)
-      for (std::int64_t dj = -1; dj <= 1; ++dj)
-        for (std::int64_t di = -1; di <= 1; ++di) {
-          const std::array<std::int64_t, 3> j{i[0] + ratio * di, i[1] + ratio * dj, i[2] + ratio * dk};
-          bool in_grid = true;
-          for (std::size_t d = 0; d < 3; ++d) in_grid = in_grid && j[d] >= 0 && j[d] <= grid.n[d] - 1 - ratio;
-          if (in_grid) refined.insert(grid.key(j[0], j[1], j[2]));
-        }
-  }
-  if (refined.size() == refined_before) break;
+  if (!adapted && (adaptation >= max_adaptations || beyond_points.empty() || !refine_cells_at())) break;
   ++stats.grid_adaptations;
   }
   stats.seconds_checks = checks_total;
   stats.membership_queries = queries;
+  stats.membership_queries_remembered = remembered_queries;
   if (options.progress) options.progress->end_phase();
   return out;
 }

@@ -172,11 +172,16 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     if (np.isZero() || nq.isZero()) return length;
     return length * std::acos(std::clamp(std::abs(np.normalized().dot(nq.normalized())), 0.0, 1.0)) / 8;
   };
+  // Faces made in the last round (all at first): every other edge is settled, so only theirs
+  // are candidates.
+  std::vector<char> fresh(mesh.num_triangles(), 1);
   for (int round = 0;; ++round) {
     std::vector<EdgeSplit> candidates;
     {
       std::unordered_set<std::uint64_t> seen;
-      for (const auto& t : mesh.triangles)
+      for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+        if (!fresh[f]) continue;
+        const auto& t = mesh.triangles[f];
         for (int j = 0; j < 3; ++j) {
           const int p = t[static_cast<std::size_t>(j)], q = t[static_cast<std::size_t>((j + 1) % 3)];
           const std::uint64_t key = refinement_edge_key(p, q);
@@ -206,6 +211,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
           e.key = key;
           candidates.push_back(e);
         }
+      }
       std::sort(candidates.begin(), candidates.end(), [](const EdgeSplit& a, const EdgeSplit& b) { return a.key < b.key; });
     }
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -309,19 +315,25 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     });
     // A split must not turn a face over: each face next to the edge, split at the new point
     // alone, gives two faces facing its way (else the split is refused, the edge unresolved).
+    // (Faces with two corners at the ends of wanted splits are looked at only.)
+    std::vector<char> at_split(mesh.num_vertices(), 0);
     {
-      std::unordered_map<std::uint64_t, std::vector<std::array<int, 3>>> faces_of_edge;
-      for (const auto& t : mesh.triangles)
+      std::unordered_map<std::uint64_t, std::size_t> wanted;
+      for (std::size_t c = 0; c < candidates.size(); ++c) {
+        const EdgeSplit& e = candidates[c];
+        if (!e.found || e.distance <= options.tolerance) continue;
+        wanted.emplace(e.key, c);
+        at_split[static_cast<std::size_t>(e.key >> 32)] = at_split[static_cast<std::size_t>(e.key & 0xffffffffu)] = 1;
+      }
+      auto position = [&](int v) -> const Eigen::Vector3d& { return mesh.positions[static_cast<std::size_t>(v)]; };
+      for (const auto& t : mesh.triangles) {
+        if (at_split[static_cast<std::size_t>(t[0])] + at_split[static_cast<std::size_t>(t[1])] + at_split[static_cast<std::size_t>(t[2])] < 2)
+          continue;
         for (int j = 0; j < 3; ++j) {
           const int u = t[static_cast<std::size_t>(j)], v = t[static_cast<std::size_t>((j + 1) % 3)], r = t[static_cast<std::size_t>((j + 2) % 3)];
-          faces_of_edge[refinement_edge_key(u, v)].push_back({u, v, r});
-        }
-      auto position = [&](int v) -> const Eigen::Vector3d& { return mesh.positions[static_cast<std::size_t>(v)]; };
-      for (EdgeSplit& e : candidates) {
-        if (!e.found || e.distance <= options.tolerance) continue;
-        const auto it = faces_of_edge.find(e.key);
-        if (it == faces_of_edge.end()) continue;
-        for (const auto& [u, v, r] : it->second) {
+          const auto it = wanted.find(refinement_edge_key(u, v));
+          if (it == wanted.end()) continue;
+          EdgeSplit& e = candidates[it->second];
           const Eigen::Vector3d parent = (position(v) - position(u)).cross(position(r) - position(u));
           const Eigen::Vector3d first = (e.position - position(u)).cross(position(r) - position(u));
           const Eigen::Vector3d second = (position(v) - e.position).cross(position(r) - e.position);
@@ -340,17 +352,22 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     std::vector<std::array<int, 3>> triangles;
     std::vector<int> parts;
     std::vector<std::size_t> parent_face;
+    std::vector<char> split_face;
     auto split_faces = [&] {
       triangles.clear();
       parts.clear();
       parent_face.clear();
+      split_face.clear();
       std::size_t parent = 0;
+      bool parent_split = false;
       auto emit = [&](int a, int b, int c, int part) {
         triangles.push_back({a, b, c});
         parts.push_back(part);
         parent_face.push_back(parent);
+        split_face.push_back(parent_split ? 1 : 0);
       };
       auto midpoint_of = [&](int p, int q) {
+        if (!at_split[static_cast<std::size_t>(p)] || !at_split[static_cast<std::size_t>(q)]) return -1;
         const auto it = split_at.find(refinement_edge_key(p, q));
         return it == split_at.end() ? -1 : it->second;
       };
@@ -360,6 +377,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
         parent = f;
         std::array<int, 3> m{midpoint_of(t[0], t[1]), midpoint_of(t[1], t[2]), midpoint_of(t[2], t[0])};
         const int splits = static_cast<int>(std::count_if(m.begin(), m.end(), [](int v) { return v >= 0; }));
+        parent_split = splits > 0;
         if (splits == 0) {
           emit(t[0], t[1], t[2], part);
         } else if (splits == 3) {
@@ -408,6 +426,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
       split_faces();
       std::unordered_set<std::uint64_t> refused;
       for (std::size_t c = 0; c < triangles.size(); ++c) {
+        if (!split_face[c]) continue;
         const std::array<int, 3>& parent = mesh.triangles[parent_face[c]];
         if (normal_of(triangles[c]).dot(normal_of(parent)) > 0) continue;
         for (int j = 0; j < 3; ++j) {
@@ -464,6 +483,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     mesh.triangles = std::move(triangles);
     mesh.parts = std::move(parts);
     origin = std::move(new_origin);
+    fresh = std::move(split_face);
   }
   return finish();
 }

@@ -40,6 +40,8 @@ struct SupersetTrimmingStats {
   std::int64_t pieces = 0, pieces_boundary = 0, pieces_inside = 0, pieces_outside = 0, pieces_duplicate = 0,
                pieces_undecided = 0;
   std::int64_t membership_queries = 0;
+  /// Contouring: queries of points asked before (answered from memory, not counted above).
+  std::int64_t membership_queries_remembered = 0;
   /// The result: closed (every edge shared by two triangles), consistently oriented, free of
   /// self-intersections (CGAL, after rounding to doubles), its connected components and volume.
   bool closed = false, oriented = false, self_intersection_free = false;
