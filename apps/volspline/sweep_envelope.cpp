@@ -29,7 +29,8 @@ struct SweepEnvelopeArguments {
   std::string out, bounds = "bezier", trimming = "auto", stats, png, size = "800,600", view, cut_open, html;
   double tol = 1e-3, coarse_cells = 0, refine = 0.25;
   std::int64_t max_cells = 2000000;
-  int adaptive_cells = 0;
+  int adaptive_cells = 4;
+  CLI::Option* adaptive_cells_option = nullptr;
   bool superset = false;
 };
 
@@ -129,10 +130,12 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   if (!(a.refine > 0 && a.refine <= 1)) throw InvalidInput("expected a multiple of --tol in (0, 1]", "--refine");
   if (a.adaptive_cells != 0 && (a.adaptive_cells < 2 || a.adaptive_cells > 16 || a.adaptive_cells % 2 != 0))
     throw InvalidInput("expected 0 (off) or an even number from 2 to 16", "--adaptive-cells");
-  if (a.adaptive_cells != 0 && a.coarse_cells > 0) throw InvalidInput("give --coarse-cells or --adaptive-cells, not both", "--adaptive-cells");
-  if (a.adaptive_cells * 3 * a.tol >= 0.5) throw InvalidInput("expected --adaptive-cells x 3 x --tol below 0.5", "--adaptive-cells");
+  const bool adaptive_cells_given = a.adaptive_cells_option != nullptr && a.adaptive_cells_option->count() > 0;
+  if (adaptive_cells_given && a.coarse_cells > 0) throw InvalidInput("give --coarse-cells or --adaptive-cells, not both", "--adaptive-cells");
+  if (adaptive_cells_given && a.adaptive_cells * 3 * a.tol >= 0.25)
+    throw InvalidInput("expected --adaptive-cells x 3 x --tol below 0.25", "--adaptive-cells");
   options.coarse_cell_factor = a.coarse_cells;
-  options.adaptive_ratio = a.adaptive_cells;
+  options.adaptive_ratio = a.coarse_cells > 0 ? 0 : a.adaptive_cells;
   options.refinement_factor = a.refine;
   options.trim = !a.superset;
   if (a.bounds == "bezier") options.bounds = JacobianBoundMethod::Bezier;
@@ -210,9 +213,9 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
     std::cerr << "volspline: warning: the trimmed envelope is not a closed, self-intersection-free surface (see above and "
                  "docs/envelopes.md, \"Limits\")\n";
   if (beyond_tolerance)
-    std::cerr << "volspline: warning: with --coarse-cells some edges are farther than the tolerance from the boundary (creases or "
-                 "features the coarse grid missed; see above): without the option the envelope is within it (docs/envelopes.md, "
-                 "\"Refinement toward the sheets\")\n";
+    std::cerr << "volspline: warning: the membership tests find some edges that refinement could not check farther than the "
+                 "tolerance from the boundary (creases or thin features the coarse cells missed; see above); --adaptive-cells 0 "
+                 "contours on the uniform fine grid instead, slower (docs/envelopes.md, \"Adaptive cells\")\n";
 }
 
 }  // namespace
@@ -234,10 +237,10 @@ void add_sweep_envelope_command(CLI::App& app) {
                   "contour on a grid of this many multiples of --tol (e.g. 16) and refine its edges toward the sheets' equations "
                   "instead of the default fine grid (3 x tol): much faster on smooth sweeps, creases it cannot resolve are "
                   "chamfered and counted (docs/envelopes.md, \"Refinement toward the sheets\"; default 0: off)");
-  cmd->add_option("--adaptive-cells", a->adaptive_cells,
-                  "contour on cells this many times the fine grid (3 x tol; an even number up to 16, e.g. 4), split into fine "
-                  "cells only where the boundary bends sharply (creases), edges refined toward the sheets' equations "
-                  "(docs/envelopes.md, \"Adaptive cells\"; default 0: off)");
+  a->adaptive_cells_option = cmd->add_option("--adaptive-cells", a->adaptive_cells,
+                  "contour on cells this many times the fine grid (3 x tol; an even number up to 16), split into fine "
+                  "cells only where the boundary bends sharply (creases) or the check of the result asks for it, edges refined "
+                  "toward the sheets' equations (docs/envelopes.md, \"Adaptive cells\"; default 4; 0: the uniform fine grid)");
   cmd->add_option("--refine", a->refine, "with --coarse-cells or --adaptive-cells: split edges until their midpoints are within this multiple of --tol of the sheet (default 0.25)");
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (parts coloured by source)");

@@ -267,10 +267,6 @@ void check_trimming_options(const SweptEnvelopeOptions& options) {
     throw InvalidInput("expected 0 <= coarse_cell_factor * tolerance < 0.5", "coarse_cell_factor");
   if (options.adaptive_ratio != 0 && (options.adaptive_ratio < 2 || options.adaptive_ratio > 16 || options.adaptive_ratio % 2 != 0))
     throw InvalidInput("expected 0 (off) or an even adaptive ratio from 2 to 16", "adaptive_ratio");
-  if (options.adaptive_ratio != 0 && options.coarse_cell_factor > 0)
-    throw InvalidInput("expected either a coarse grid or adaptive cells, not both", "adaptive_ratio");
-  if (options.adaptive_ratio * options.contour_cell_factor * options.tolerance >= 0.5)
-    throw InvalidInput("expected adaptive_ratio * contour_cell_factor * tolerance < 0.5", "adaptive_ratio");
   if (!(options.refinement_factor >= 0 && options.refinement_factor * options.tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_factor * tolerance < 0.5", "refinement_factor");
 }
@@ -401,10 +397,13 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
   // edges it could not refine (chamfered creases, features between two crossings of a coarse
   // cell, failed Newton) are checked by membership tests at the tolerance and counted.
   std::string rejected;
-  if ((options.coarse_cell_factor > 0 || options.adaptive_ratio > 1) && options.refinement_factor > 0) {
+  // Coarse cells wider than a quarter of the diagonal see nothing: the ratio is lowered to fit.
+  int adaptive_ratio = options.adaptive_ratio;
+  while (adaptive_ratio >= 2 && adaptive_ratio * options.contour_cell_factor * options.tolerance >= 0.25) adaptive_ratio -= 2;
+  if ((options.coarse_cell_factor > 0 || adaptive_ratio > 1) && options.refinement_factor > 0) {
     ImageContouringOptions coarse = contouring;
-    if (options.adaptive_ratio > 1) coarse.coarse_ratio = options.adaptive_ratio;
-    else coarse.cell_size = options.coarse_cell_factor * options.tolerance;
+    if (options.coarse_cell_factor > 0) coarse.cell_size = options.coarse_cell_factor * options.tolerance;
+    else coarse.coarse_ratio = adaptive_ratio;
     coarse.refinement_tolerance = options.refinement_factor * options.tolerance;
     coarse.verification_distance = options.tolerance;
     TrimmedBoundary trimmed = contour_image_boundary(superset.mesh, superset.times, inside, coarse, exact, sheet_of_triangle, exact_from);

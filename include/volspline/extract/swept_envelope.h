@@ -70,12 +70,14 @@ struct SweptEnvelopeOptions {
   /// are chamfered and counted (`refinement_unresolved_edges`). docs/envelopes.md, "Refinement
   /// toward the sheets".
   double coarse_cell_factor = 0;
-  /// Adaptive cells instead (an even number up to 16; 0: not): cells this many times the grid
-  /// of contour_cell_factor, split into it where the contour bends by more than the crease angle
-  /// (ImageContouringOptions::coarse_ratio), edges refined toward the sheets as with
-  /// coarse_cell_factor. Kept when closed, oriented and free of self-intersections (otherwise the
-  /// uniform grid of contour_cell_factor is used, unrefined). docs/envelopes.md, "Adaptive cells".
-  int adaptive_ratio = 0;
+  /// Adaptive cells (the default, 4; an even number up to 16, or 0 for the uniform grid of
+  /// contour_cell_factor): cells this many times the grid of contour_cell_factor, split into it
+  /// where the contour bends by more than the crease angle or the verification finds an edge
+  /// beyond the tolerance (ImageContouringOptions::coarse_ratio), edges refined toward the
+  /// sheets as with coarse_cell_factor. Kept when closed, oriented and free of
+  /// self-intersections (otherwise the uniform grid of contour_cell_factor is used, unrefined).
+  /// Not used when coarse_cell_factor > 0. docs/envelopes.md, "Adaptive cells".
+  int adaptive_ratio = 4;
   double refinement_factor = 0.25;
   ImageContouringOptions contouring;
   Progress* progress = nullptr;
