@@ -42,8 +42,8 @@ asan: deps
 # libFuzzer targets built with clang (-O1 with line tables: what the sanitizers need for their
 # reports, cheaper to build than RelWithDebInfo); FUZZ_SECONDS per target (EXCHANGE_FUZZ_SECONDS
 # for the scene, G+Smo, IRIT and VTU readers).
-FUZZ_SECONDS ?= 12
-EXCHANGE_FUZZ_SECONDS ?= 6
+FUZZ_SECONDS ?= 10
+EXCHANGE_FUZZ_SECONDS ?= 5
 fuzz: deps
 	@CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" -DVOLSPLINE_BUILD_FUZZ=ON -DVOLSPLINE_BUILD_TESTS=OFF -DVOLSPLINE_BUILD_BENCH=OFF $(UNITY_FLAGS) >/dev/null
 	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz gismo_xml_fuzz irit_itd_fuzz vtu_reader_fuzz skeleton_reader_fuzz volume_data_fuzz
