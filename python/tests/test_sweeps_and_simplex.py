@@ -44,6 +44,10 @@ def test_envelope_of_a_translated_box_is_the_hull(tmp_path, cli):
     assert set(np.unique(superset["parts"])) <= {13, 14, 15}
     with pytest.raises(volspline.InvalidInput, match="coarse_cells"):
         volspline.sweep_envelope(solid, coarse_cells=-1)
+    with pytest.raises(volspline.InvalidInput, match="adaptive_cells"):
+        volspline.sweep_envelope(solid, adaptive_cells=3)
+    uniform = volspline.sweep_envelope(solid, adaptive_cells=0)["stats"]
+    assert uniform["closed"] and abs(uniform["volume"] - exact) < 1e-9
     with pytest.raises(volspline.InvalidInput, match="refine"):
         volspline.sweep_envelope(solid, coarse_cells=16, refine=0)
     volspline.write(tmp_path / "swept.json", [solid])
