@@ -44,6 +44,7 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
         {"rank_deficient", s.rank_deficient_triangles}}},
       {"three_faces_degenerate", s.degenerate_three_faces},
       {"three_faces_without_fold", s.fold_free_three_faces},
+      {"three_faces_interior", s.interior_face_sweeps},
       {"fold_cells_examined", s.cells_examined},
       {"fold_cells_kept", s.cells_kept},
       {"rank_cells_examined", s.rank_cells_examined},

@@ -14,6 +14,7 @@
 #include "volspline/core/error.h"
 #include "volspline/extract/image_membership.h"
 #include "volspline/extract/face_tessellation.h"
+#include "volspline/extract/interior_face_sweeps.h"
 #include "volspline/extract/rank_deficient_surface.h"
 #include "volspline/spline/bezier_extraction.h"
 #include "volspline/spline/iso_restriction.h"
@@ -111,8 +112,16 @@ bool jacobian_keeps_weak_sign(const BSplineVolume& v) {
 }
 
 // The superset of one patch into `out`.
+// Whether face (direction, end) of patch `patch` is among `faces`.
+bool listed_face(const std::vector<PatchFace>& faces, int patch, int direction, int end) {
+  return std::find(faces.begin(), faces.end(), PatchFace{patch, direction, end}) != faces.end();
+}
+
+// The superset of one patch into `out`, without the sweeps of the faces in `interior` (their
+// folds and their squares at t = 0 and 1; the squares their edges sweep stay, as those edges
+// bound other faces too).
 void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs, const SweptEnvelopeOptions& options,
-                    SweptEnvelope& out) {
+                    const std::vector<PatchFace>& interior, SweptEnvelope& out) {
   SweptEnvelopeStats& stats = out.stats;
   const auto samples = envelope_samples(s, tol_abs, options);
   for (int d = 0; d < 4; ++d)
@@ -147,6 +156,7 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
       const SupersetSheet sheet{static_cast<std::uint8_t>((1 << fixed[0]) | (1 << fixed[1])), false};
       for (int end0 = 0; end0 < 2; ++end0)
         for (int end1 = 0; end1 < 2; ++end1) {
+          if (fixed[1] == 3 && listed_face(interior, patch_index, fixed[0], end0)) continue;
           std::array<std::size_t, 4> idx{};
           idx[static_cast<std::size_t>(fixed[0])] = end0 ? count[static_cast<std::size_t>(fixed[0])] - 1 : 0;
           idx[static_cast<std::size_t>(fixed[1])] = end1 ? count[static_cast<std::size_t>(fixed[1])] - 1 : 0;
@@ -191,6 +201,10 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
   for (int c = 0; c < 4; ++c)
     for (int end = 0; end < 2; ++end) {
       const double value = end ? s.domain_max(c) : s.domain_min(c);
+      if (c < 3 && listed_face(interior, patch_index, c, end)) {
+        ++stats.interior_face_sweeps;
+        continue;
+      }
       const BSplineVolume cube = restrict_to_iso(s, c, value);
       if (jacobian_vanishes_identically(cube)) {
         ++stats.degenerate_three_faces;
@@ -271,6 +285,36 @@ void check_trimming_options(const SweptEnvelopeOptions& options) {
     throw InvalidInput("expected 0 <= refinement_factor * tolerance < 0.5", "refinement_factor");
 }
 
+// The superset without the triangles of interior face sweeps (interior_face_sweeps): the folds
+// of those 3-faces and their squares at t = 0 and 1, told apart by their sheets. Vertices are
+// kept (unused ones are harmless).
+SweptEnvelope without_interior_face_sweeps(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& superset) {
+  const std::vector<PatchFace> interior = interior_face_sweeps(patches);
+  if (interior.empty() || superset.sheets.size() != superset.mesh.num_triangles()) return superset;
+  SweptEnvelope out = superset;
+  out.mesh.triangles.clear();
+  out.mesh.parts.clear();
+  out.sheets.clear();
+  for (std::size_t t = 0; t < superset.mesh.num_triangles(); ++t) {
+    const SupersetSheet& sheet = superset.sheets[t];
+    const auto v0 = static_cast<std::size_t>(superset.mesh.triangles[t][0]);
+    const int patch = superset.patches[v0];
+    const auto& s = patches[static_cast<std::size_t>(patch)];
+    bool drop = false;
+    for (int c = 0; c < 3 && !drop; ++c) {
+      const bool on_face = sheet.fold ? sheet.fixed == (1 << c) : sheet.fixed == ((1 << c) | (1 << 3));
+      if (!on_face) continue;
+      const int end = superset.mesh.parameters[v0][c] > 0.5 * (s.domain_min(c) + s.domain_max(c)) ? 1 : 0;
+      drop = listed_face(interior, patch, c, end);
+    }
+    if (drop) continue;
+    out.mesh.triangles.push_back(superset.mesh.triangles[t]);
+    out.mesh.parts.push_back(superset.mesh.parts[t]);
+    out.sheets.push_back(sheet);
+  }
+  return out;
+}
+
 }  // namespace
 
 SweptEnvelope swept_envelope_superset(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {
@@ -278,7 +322,8 @@ SweptEnvelope swept_envelope_superset(const std::vector<BSplineHypervolume>& pat
   const auto start = Clock::now();
   SweptEnvelope out;
   const double tol_abs = options.tolerance * control_diagonal(patches);
-  for (std::size_t i = 0; i < patches.size(); ++i) patch_superset(patches[i], static_cast<int>(i), tol_abs, options, out);
+  const std::vector<PatchFace> interior = options.interior_faces ? std::vector<PatchFace>{} : interior_face_sweeps(patches);
+  for (std::size_t i = 0; i < patches.size(); ++i) patch_superset(patches[i], static_cast<int>(i), tol_abs, options, interior, out);
   out.stats.seconds_total = seconds_since(start);
   return out;
 }
@@ -301,15 +346,18 @@ Eigen::Vector3d swept_envelope_point(const std::vector<BSplineHypervolume>& patc
 
 SweptEnvelope swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options) {
   check_trimming_options(options);
-  SweptEnvelope superset = swept_envelope_superset(patches, options);
-  if (!options.trim) return superset;
-  return trim_swept_envelope(patches, superset, options);
+  if (!options.trim) return swept_envelope_superset(patches, options);
+  // The trimming needs no interior sheets: computing them would cost time twice.
+  SweptEnvelopeOptions without_interior = options;
+  without_interior.interior_faces = false;
+  return trim_swept_envelope(patches, swept_envelope_superset(patches, without_interior), options);
 }
 
-SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& superset,
+SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& given,
                                   const SweptEnvelopeOptions& options) {
   check_trimming_options(options);
   const auto start = Clock::now();
+  const SweptEnvelope superset = without_interior_face_sweeps(patches, given);
   const SplineImage<4> image(patches);
   const ImageMembershipTest inside = image_membership_test(image);
   auto finish = [&](TrimmedBoundary trimmed, EnvelopeTrimming method) {

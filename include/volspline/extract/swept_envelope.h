@@ -57,6 +57,11 @@ struct SweptEnvelopeOptions {
   int min_samples = 4, max_samples = 256;
   /// Trim to the true boundary (otherwise the paper's superset).
   bool trim = true;
+  /// The superset with the sweeps of faces two generator patches share from opposite sides
+  /// (extract/interior_face_sweeps.h): the paper's superset has them; they lie inside the swept
+  /// volume, so the trimming leaves them out (swept_envelope computes none, trim_swept_envelope
+  /// drops any it is given).
+  bool interior_faces = true;
   EnvelopeTrimming trimming_method = EnvelopeTrimming::Automatic;
   SupersetTrimmingOptions trimming;
   /// Contouring: grid spacing in multiples of `tolerance` (the other contouring options as
@@ -92,6 +97,9 @@ struct SweptEnvelopeStats {
   int degenerate_three_faces = 0;
   /// 3-faces whose Jacobian keeps a weak sign: they do not fold (no zero surface to extract).
   int fold_free_three_faces = 0;
+  /// 3-faces left out as interior (SweptEnvelopeOptions::interior_faces false): their folds
+  /// and their squares at t = 0 and 1.
+  int interior_face_sweeps = 0;
   /// Cells of the 3-face zero surfaces and of the rank-deficient set.
   std::int64_t cells_examined = 0, cells_kept = 0;
   std::int64_t rank_cells_examined = 0, rank_cells_kept = 0;
