@@ -42,8 +42,9 @@ struct FitRequest {
   std::string knots = "fixed";
   bool baselines = false;
   double fairing = ControlVectorFitOptions{}.fairing;
+  CLI::Option* fairing_option = nullptr;
   double jump = 0;
-  std::string layout = "farthest";
+  std::string layout = "auto";
   int placement_rounds = KnotOptimisationOptions{}.placement_rounds;
   double spacing_ratio = KnotOptimisationOptions{}.spacing_ratio;
 };
@@ -147,6 +148,8 @@ nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& 
   j["domain_tetrahedra"] = s.domain_tetrahedra;
   j["control_points"] = s.control_points;
   j["primary_knots"] = s.primary_knots;
+  j["primary_knots_layout"] = s.layout;
+  j["fairing"] = s.fairing;
   j["knots"] = s.knots;
   j["coefficients_per_data_point"] = static_cast<double>(s.control_points) / static_cast<double>(std::max<std::size_t>(1, s.data_points));
   j["boundary_vertices"] = {{"corner", s.corner_vertices}, {"curve", s.curve_vertices}, {"general", s.general_vertices}};
@@ -231,9 +234,10 @@ void fit_file(const FitRequest& r) {
   VolumeFitOptions options;
   options.degree = r.degree;
   options.domain.primary_knots = r.primary_knots;
-  if (r.layout != "farthest" && r.layout != "lattice")
-    throw InvalidInput("expected --primary-knots-layout farthest or lattice, got '" + r.layout + "'", "--primary-knots-layout");
+  if (r.layout != "auto" && r.layout != "farthest" && r.layout != "lattice")
+    throw InvalidInput("expected --primary-knots-layout auto, farthest or lattice, got '" + r.layout + "'", "--primary-knots-layout");
   options.domain.lattice = r.layout == "lattice";
+  options.grid_layout = r.layout == "auto";
   if (r.primary_knots < 0) throw InvalidInput("expected a positive number of primary knots, got " + std::to_string(r.primary_knots), "--primary-knots");
   if (!(r.error >= 0)) throw InvalidInput("expected an error bound >= 0, got " + format_double(r.error), "--error");
   if (r.max_tetrahedra < 0) throw InvalidInput("expected a tetrahedron budget >= 0, got " + std::to_string(r.max_tetrahedra), "--max-tetrahedra");
@@ -250,6 +254,8 @@ void fit_file(const FitRequest& r) {
   options.knots.spacing_ratio = r.spacing_ratio;
   if (!(r.fairing >= 0) || !std::isfinite(r.fairing)) throw InvalidInput("expected a fairing weight >= 0, got " + format_double(r.fairing), "--fairing");
   options.fit.fairing = r.fairing;
+  // An explicit --fairing, 0 too, is kept on grid data.
+  if (r.fairing_option && r.fairing_option->count() > 0) options.grid_fairing = r.fairing;
   if (!(r.jump >= 0) || !std::isfinite(r.jump)) throw InvalidInput("expected a jump >= 0, got " + format_double(r.jump), "--jump");
   options.jump = r.jump;
   options.refinement.error = r.error;
@@ -364,8 +370,9 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--attributes", r->attributes, "the attributes to fit, comma-separated (default: all)");
   cmd->add_option("--primary-knots", r->primary_knots, "the number of primary knots (domain vertices; default: points / (2 (n+1)(n+2)), points / 24 for degree 2)");
   cmd->add_option("--primary-knots-layout", r->layout,
-                  "farthest (default: data points by farthest-point sampling) or lattice (a body-centred cubic lattice over "
-                  "the bounding box: congruent tetrahedra, better on grid-like smooth data; docs/fitting.md)");
+                  "auto (default: lattice for data on a complete regular grid, with --fairing 0.1 unless given, and farthest "
+                  "otherwise or with --jump or --knots place/optimise), farthest (data points by farthest-point sampling) or "
+                  "lattice (a body-centred cubic lattice over the bounding box: congruent tetrahedra; docs/fitting.md, \"Grid data\")");
   cmd->add_option("--error", r->error,
                   "adaptive refinement (Hua-He-Qin 5.4): split every tetrahedron whose RMS normalised field error is above E (default 0: none)");
   cmd->add_option("--max-tetrahedra", r->max_tetrahedra, "the refinement's tetrahedron budget (default: 8 times the initial domain)");
@@ -381,9 +388,10 @@ void add_fit_command(CLI::App& app) {
                   "with --knots place or optimise: the placed knots' spacing stays within this factor of its median (default 2.5)");
   cmd->add_option("--png", r->png, "also write an X-ray picture of the first fitted attribute (.png)");
   cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
-  cmd->add_option("--fairing", r->fairing,
+  r->fairing_option = cmd->add_option("--fairing", r->fairing,
                   "weight of the fairing term (finite differences of order n+1, zero on polynomials of degree <= n) against "
-                  "the data term (default 0: none; 0.1 damps ringing next to the boundary, docs/fitting.md)");
+                  "the data term (default 0: none, 0.1 with the lattice layout auto chooses for grid data; 0.1 damps ringing "
+                  "next to the boundary, docs/fitting.md)");
   cmd->add_option("--jump", r->jump,
                   "sharp features (Hua-He-Qin 4.2): neighbouring points whose normalised values differ by more than J are on two "
                   "sides of a jump; the surface between them becomes a domain interface with knots on it and no control vector "

@@ -204,6 +204,8 @@ py::dict fit_statistics(const VolumeFitStatistics& s) {
   }
   out["attributes"] = attributes;
   out["field_normalised_mean_square"] = mean_normalised_field_error(s.errors);
+  out["primary_knots_layout"] = s.layout;
+  out["fairing"] = s.fairing;
   py::dict placement;
   placement["rounds"] = s.knot_placement.rounds;
   placement["round_kept"] = s.knot_placement.kept;

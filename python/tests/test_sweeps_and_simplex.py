@@ -139,8 +139,21 @@ def test_fit_reproduces_a_linear_field_and_reports_table_1():
     inside = p[volume.evaluate(p)["inside"]]
     values = volume.evaluate(inside)["attributes"]["temperature"]
     assert np.abs(values - (2 * inside[:, 0] - inside[:, 1] + 0.5 * inside[:, 2])).max() < 1e-9
+    assert stats["primary_knots_layout"] == "farthest" and stats["fairing"] == 0
     with pytest.raises(volspline.InvalidInput, match="temperature|pressure"):
         volspline.fit(data, 1, attributes=["pressure"])
+
+
+def test_fit_of_grid_data_uses_the_lattice_layout_with_fairing():
+    # docs/fitting.md, "Grid data": every combination of the axes' values once.
+    axis = np.linspace(0, 1, 10)
+    x, y, z = np.meshgrid(axis, axis, axis, indexing="ij")
+    p = np.column_stack([x.ravel(), y.ravel(), z.ravel()])
+    data = {"points": p, "attributes": {"f": p[:, 0] * p[:, 1] + p[:, 2] ** 2}}
+    volume, stats = volspline.fit(data, 2)
+    assert stats["primary_knots_layout"] == "lattice" and stats["fairing"] == 0.1
+    # A quadratic is reproduced by the degree-2 fit, fairing or not (the term vanishes on it).
+    assert stats["attributes"]["f"]["max_abs"] < 1e-6
 
 
 def test_progress_reports_phases_and_raises_what_the_callback_raises():

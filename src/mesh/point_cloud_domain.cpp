@@ -1,6 +1,7 @@
 #include "volspline/mesh/point_cloud_domain.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -206,6 +207,68 @@ std::vector<VertexKind> classify_vertices(const TetrahedralMesh& mesh) {
   return kinds;
 }
 
+namespace {
+
+// Cells per axis of the body-centred cubic lattice of about `count` knots over a box of `size`:
+// (m_x + 1)(m_y + 1)(m_z + 1) corners and m_x m_y m_z centres, cells of equal sides as near as
+// the box allows: each m_a the floor or the ceiling of size_a / cell, whichever combination
+// comes nearest `count` (rounding each alone gave 91 knots for 40 on a cube).
+Eigen::Vector3i lattice_cells(const Eigen::Vector3d& size, int count) {
+  const double cell = std::cbrt(2 * size.prod() / std::max(count, 2));
+  Eigen::Vector3i best = Eigen::Vector3i::Ones();
+  long long best_gap = -1;
+  for (int c = 0; c < 8; ++c) {
+    Eigen::Vector3i m;
+    for (int a = 0; a < 3; ++a) {
+      const double cells = size[a] / cell;
+      m[a] = std::max(1, static_cast<int>((c >> a) & 1 ? std::ceil(cells) : std::floor(cells)));
+    }
+    const long long knots = 1LL * (m.x() + 1) * (m.y() + 1) * (m.z() + 1) + 1LL * m.x() * m.y() * m.z();
+    const long long gap = std::abs(knots - count);
+    if (best_gap < 0 || gap < best_gap) {
+      best = m;
+      best_gap = gap;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::size_t lattice_primary_knots(std::span<const Eigen::Vector3d> points, int primary_knots) {
+  Eigen::AlignedBox3d box;
+  for (const auto& p : points) box.extend(p);
+  const int wanted = primary_knots > 0 ? primary_knots : std::max(4, static_cast<int>(points.size() / 24));
+  const Eigen::Vector3i m = lattice_cells(box.sizes(), std::min<int>(wanted, static_cast<int>(points.size())));
+  return static_cast<std::size_t>((m.x() + 1) * (m.y() + 1) * (m.z() + 1) + m.x() * m.y() * m.z());
+}
+
+bool is_complete_grid(const std::vector<Eigen::Vector3d>& points) {
+  std::array<std::vector<double>, 3> axes;
+  for (int d = 0; d < 3; ++d) {
+    auto& axis = axes[static_cast<std::size_t>(d)];
+    axis.reserve(points.size());
+    for (const Eigen::Vector3d& p : points) axis.push_back(p[d]);
+    std::sort(axis.begin(), axis.end());
+    axis.erase(std::unique(axis.begin(), axis.end()), axis.end());
+    if (axis.size() < 2) return false;
+  }
+  const std::size_t nx = axes[0].size(), ny = axes[1].size();
+  if (nx * ny * axes[2].size() != points.size()) return false;
+  std::vector<char> seen(points.size(), 0);
+  for (const Eigen::Vector3d& p : points) {
+    std::array<std::size_t, 3> node{};
+    for (int d = 0; d < 3; ++d) {
+      const auto& axis = axes[static_cast<std::size_t>(d)];
+      node[static_cast<std::size_t>(d)] = static_cast<std::size_t>(std::lower_bound(axis.begin(), axis.end(), p[d]) - axis.begin());
+    }
+    char& s = seen[node[0] + nx * (node[1] + ny * node[2])];
+    if (s) return false;
+    s = 1;
+  }
+  return true;
+}
+
 PointCloudDomain point_cloud_domain(std::span<const Eigen::Vector3d> points, const PointCloudDomainOptions& options) {
   if (points.size() < 4) throw InvalidInput("expected at least 4 points for a tetrahedral domain, got " + std::to_string(points.size()), "points");
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -232,9 +295,7 @@ PointCloudDomain point_cloud_domain(std::span<const Eigen::Vector3d> points, con
     Eigen::AlignedBox3d box;
     for (const auto& p : points) box.extend(p);
     const Eigen::Vector3d size = box.sizes();
-    const double cell = std::cbrt(2 * size.prod() / std::max(count, 2));
-    Eigen::Vector3i m;
-    for (int a = 0; a < 3; ++a) m[a] = std::max(1, static_cast<int>(std::lround(size[a] / cell)));
+    const Eigen::Vector3i m = lattice_cells(size, count);
     const Eigen::Vector3d step = size.cwiseQuotient(m.cast<double>());
     for (int k = 0; k <= m.z(); ++k)
       for (int j = 0; j <= m.y(); ++j)

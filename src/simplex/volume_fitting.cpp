@@ -412,12 +412,27 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
   VolumeFitStatistics statistics;
   PhaseClock clock(statistics.phases);
   PointCloudDomainOptions domain_options = options.domain;
+  ControlVectorFitOptions fit_options = options.fit;
   if (domain_options.primary_knots == 0) {
     // About 1, 7.5, 24, 55 control vectors per vertex for degrees 1..4: this keeps them below
     // the number of points (0.08, 0.31, 0.6, 0.9 per point).
     const int n = options.degree;
     domain_options.primary_knots = std::max(4, static_cast<int>(data.size() / static_cast<std::size_t>(2 * (n + 2) * (n + 1))));
   }
+  // Grid data: the farthest-point knots of a grid make an irregular Delaunay domain (edge
+  // lengths varying by 2x, slivers by the hull) that approximates smooth data less well per
+  // coefficient than the lattice's congruent tetrahedra, which need the fairing term to keep
+  // the basis functions reaching outside the box from overshooting (docs/fitting.md, "Grid data").
+  // Only where the lattice's whole cells come to at most a quarter more knots than asked (not on
+  // small grids, where they would give many more control vectors than the fit was sized for).
+  if (options.grid_layout && !domain_options.lattice && !(options.jump > 0) && !options.knots.enabled && is_complete_grid(data.points) &&
+      4 * lattice_primary_knots(data.points, domain_options.primary_knots) <=
+          5 * std::min(static_cast<std::size_t>(domain_options.primary_knots), data.size())) {
+    domain_options.lattice = true;
+    if (fit_options.fairing == 0) fit_options.fairing = options.grid_fairing;
+  }
+  statistics.layout = domain_options.lattice ? "lattice" : "farthest";
+  statistics.fairing = fit_options.fairing;
   // The domain, its split at a jump, the knot clouds and the least-squares fit (eq. 10) for a
   // choice of primary knots; the sharp-feature report and own-side data of the chosen one are kept.
   struct Built {
@@ -452,9 +467,9 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     b.errors = fit_control_vectors(*b.volume, b.own_side ? *b.own_side : to_fit, fit_with, phases);
     return b;
   };
-  Built built = build(domain_options, data, options.fit, &statistics.phases);
+  Built built = build(domain_options, data, fit_options, &statistics.phases);
   clock.restart();
-  if (options.knots.enabled && options.knots.placement_rounds > 0 && !(options.jump > 0) && !options.domain.lattice) {
+  if (options.knots.enabled && options.knots.placement_rounds > 0 && !(options.jump > 0) && !domain_options.lattice) {
     // Primary knots placed again where the error asks for them (knot_placement.h), as many as
     // before. Knots crowded where the data are hard can fit the data better and the field worse
     // (basis functions between the samples that no sample pins down), so a placement is judged
@@ -474,7 +489,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
         // The judging fits are faired (at least kPlacementFairing): without, basis functions next to
         // ∂Ω that few samples see ring between them, and that noise, not the layout, decides.
         // The kept layout's final fit is faired the same way.
-        ControlVectorFitOptions judging = options.fit;
+        ControlVectorFitOptions judging = fit_options;
         judging.fairing = std::max(judging.fairing, kPlacementFairing);
         Built current = build(domain_options, training, judging, nullptr);
         placement.held_out_before = mean_normalised_field_error(volume_fit_errors(*current.volume, held_out));
@@ -546,7 +561,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     const auto start = std::chrono::steady_clock::now();
     KnotOptimisationOptions knots = options.knots;
     if (!(knots.threshold > 0) && options.refinement.error > 0) knots.threshold = options.refinement.error;
-    statistics.knot_optimisation = optimise_knots(volume, statistics.errors, fitted, knots, options.fit);
+    statistics.knot_optimisation = optimise_knots(volume, statistics.errors, fitted, knots, fit_options);
     statistics.phases.push_back({"knot optimisation", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
   }
   if (options.refinement.error > 0) {
@@ -554,7 +569,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     const auto start = std::chrono::steady_clock::now();
     AdaptiveRefinementOptions refinement = options.refinement;
     refinement.spread = options.spread;
-    statistics.refinement = refine_volume_fit(volume, statistics.errors, fitted, refinement, options.fit, [&](const RefinementRound& round) {
+    statistics.refinement = refine_volume_fit(volume, statistics.errors, fitted, refinement, fit_options, [&](const RefinementRound& round) {
       announce("adaptive refinement: " + std::to_string(round.tetrahedra) + " tetrahedra");
     });
     statistics.phases.push_back({"adaptive refinement", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});

@@ -187,8 +187,10 @@ TEST(PointCloudDomain, ALatticeLayoutCoversTheBoxWithAboutTheAskedNumberOfKnots)
   const PointCloudDomain domain = point_cloud_domain(points, options);
   ASSERT_NO_THROW(validate_tetrahedral_mesh(domain.mesh));
   EXPECT_NEAR(tetrahedral_mesh_volume(domain.mesh), 2.0, 1e-12);  // the box, corners kept
-  // cbrt(2 · 2 / 60) = 0.405: cells 0.4 x 0.5 x 0.5, 6 x 3 x 3 corners and 5 x 2 x 2 centres.
-  EXPECT_EQ(domain.mesh.points.size(), 54u + 20u);
+  // cbrt(2 · 2 / 60) = 0.405, so 4.94 x 2.47 x 2.47 cells: of the floors and ceilings, 4 x 2 x 2
+  // cells of side 0.5 come nearest 60 knots, 5 x 3 x 3 corners and 4 x 2 x 2 centres (rounding
+  // each axis, 5 x 2 x 2 cells, gave 74).
+  EXPECT_EQ(domain.mesh.points.size(), 45u + 16u);
   for (int v : domain.data_index) EXPECT_EQ(v, -1);
 }
 

@@ -7,6 +7,7 @@
 
 #include "volspline/construct/volume_data_examples.h"
 #include "volspline/core/error.h"
+#include "volspline/mesh/point_cloud_domain.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
 
 namespace volspline {
@@ -72,7 +73,9 @@ TEST(VolumeFitting, FairingDampsOvershootBetweenTheDataAndKeepsPolynomials) {
   auto truth_errors = [&](double fairing) {
     VolumeFitOptions options;
     options.fit.fairing = fairing;
+    options.grid_layout = false;  // the farthest-point layout, where the ringing is
     const VolumeFit fit = fit_volume_data(data, options);
+    EXPECT_EQ(fit.statistics.layout, "farthest");
     DmsSplineEvaluator evaluator(fit.volume);
     const int column = fit.volume.attribute_column("rho");
     std::mt19937 random(7);
@@ -104,6 +107,46 @@ TEST(VolumeFitting, FairingDampsOvershootBetweenTheDataAndKeepsPolynomials) {
     EXPECT_LE(fit.statistics.errors.attributes[0].max_abs, 1e-5) << "degree " << n;
     EXPECT_LE(std::sqrt(fit.statistics.errors.geometric_max), 1e-10) << "degree " << n;
   }
+}
+
+TEST(VolumeFitting, GridDataGetTheLatticeLayoutWithFairingScatteredDataFarthestPoints) {
+  // A complete grid (an image's voxel centres) with the default options: the lattice layout and
+  // fairing 0.1 (docs/fitting.md, "Grid data"); the same points less one are scattered data.
+  VolumeData grid = marschner_lobb_data(13);
+  const VolumeFit on_grid = fit_volume_data(grid, VolumeFitOptions{});
+  EXPECT_EQ(on_grid.statistics.layout, "lattice");
+  EXPECT_EQ(on_grid.statistics.fairing, 0.1);
+  VolumeData scattered = grid;
+  scattered.points.pop_back();
+  scattered.attributes.conservativeResize(scattered.attributes.rows() - 1, Eigen::NoChange);
+  const VolumeFit off_grid = fit_volume_data(scattered, VolumeFitOptions{});
+  EXPECT_EQ(off_grid.statistics.layout, "farthest");
+  EXPECT_EQ(off_grid.statistics.fairing, 0.0);
+  // Asked for farthest points (grid_layout off), or with an explicit fairing: as given.
+  VolumeFitOptions farthest;
+  farthest.grid_layout = false;
+  EXPECT_EQ(fit_volume_data(grid, farthest).statistics.layout, "farthest");
+  VolumeFitOptions faired;
+  faired.fit.fairing = 0.3;
+  const VolumeFit with_fairing = fit_volume_data(grid, faired);
+  EXPECT_EQ(with_fairing.statistics.layout, "lattice");
+  EXPECT_EQ(with_fairing.statistics.fairing, 0.3);
+}
+
+TEST(VolumeFitting, TheLatticeHasAboutAsManyKnotsAsAsked) {
+  // Cells per axis by floor or ceiling, whichever count comes nearest: (m + 1)^3 + m^3 on a cube
+  // with m cells on every axis; asked for more than the points, about as many as the points.
+  std::vector<Eigen::Vector3d> cube;
+  for (int k = 0; k < 12; ++k)
+    for (int j = 0; j < 12; ++j)
+      for (int i = 0; i < 12; ++i) cube.emplace_back(i, j, k);
+  EXPECT_EQ(lattice_primary_knots(cube, 40), 35u);      // m = 2 (rounding alone: m = 3, 91)
+  EXPECT_EQ(lattice_primary_knots(cube, 1241), 1241u);  // m = 8 exactly
+  EXPECT_EQ(lattice_primary_knots(cube, 400), 402u);    // 5 x 5 x 6 cells: 6 * 6 * 7 + 5 * 5 * 6
+  EXPECT_NEAR(static_cast<double>(lattice_primary_knots(cube, 100000)), 1728.0, 10.0);
+  EXPECT_TRUE(is_complete_grid(cube));
+  cube.back() = Eigen::Vector3d(0.5, 0, 0);
+  EXPECT_FALSE(is_complete_grid(cube));
 }
 
 TEST(VolumeFitting, TheIterativeSolverReproducesPolynomialsToo) {

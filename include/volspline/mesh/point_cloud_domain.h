@@ -89,6 +89,15 @@ struct PointCloudDomainOptions {
   std::vector<double> spacing;
 };
 
+/// Whether the points form a complete regular grid: at least 2 distinct values of each
+/// coordinate and every combination of them exactly once (the voxel centres of an image).
+bool is_complete_grid(const std::vector<Eigen::Vector3d>& points);
+
+/// How many primary knots the lattice layout (PointCloudDomainOptions::lattice) places for these
+/// points and this primary_knots option: about as many as asked, but whole cells, so a few
+/// more or fewer (91 for 40 on a cube).
+std::size_t lattice_primary_knots(std::span<const Eigen::Vector3d> points, int primary_knots);
+
 struct PointCloudDomain {
   /// The domain: positively oriented, every point used.
   TetrahedralMesh mesh;

@@ -197,6 +197,12 @@ struct VolumeFitOptions {
   PointCloudDomainOptions domain;
   /// Knot cloud spread (knot_clouds.h).
   double spread = 0.15;
+  /// Data on a complete regular grid (is_complete_grid: images, generated grids) get the lattice
+  /// layout (domain.lattice) and, where fit.fairing is 0, fairing grid_fairing; not with a jump
+  /// or knot optimisation (they place knots at data points). false: the options as given.
+  /// docs/fitting.md, "Grid data".
+  bool grid_layout = true;
+  double grid_fairing = 0.1;
   ControlVectorFitOptions fit;
   AdaptiveRefinementOptions refinement;
   KnotOptimisationOptions knots;
@@ -221,6 +227,9 @@ struct VolumeFitStatistics {
   std::size_t data_points = 0, delaunay_tetrahedra = 0, domain_tetrahedra = 0, control_points = 0, knots = 0, primary_knots = 0;
   /// Boundary vertices by kind (§5.2).
   std::size_t corner_vertices = 0, curve_vertices = 0, general_vertices = 0;
+  /// The primary-knot layout used ("farthest" or "lattice") and the fairing weight of the fit.
+  std::string layout;
+  double fairing = 0;
   VolumeFitErrors errors;
   std::vector<FitPhase> phases;
   AdaptiveRefinementReport refinement;
