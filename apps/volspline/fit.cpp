@@ -304,6 +304,9 @@ void fit_file(const FitRequest& r) {
   std::cout << "wrote " << r.out << ": degree " << r.degree << " simplex spline fitted to " << e.fitted_points << " of " << e.data_points
             << " points (" << e.outside_points << " outside the domain), " << statistics.domain_tetrahedra << " tetrahedra, "
             << statistics.control_points << " control points, " << statistics.knots << " knots\n";
+  std::cout << "  primary knots: " << (statistics.layout == "lattice" ? "body-centred cubic lattice" : "farthest-point samples")
+            << (r.layout == "auto" && statistics.layout == "lattice" ? " (the data form a complete grid)" : "") << ", fairing "
+            << format_double(statistics.fairing) << "\n";
   std::cout << "  geometry: mean square error " << format_double(e.geometric_mean_square) << "\n";
   if (e.attributes.size() > 1)
     std::cout << "  fields: normalised mean square error " << format_double(mean_normalised_field_error(e)) << " (mean over "

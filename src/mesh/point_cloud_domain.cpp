@@ -211,23 +211,34 @@ namespace {
 
 // Cells per axis of the body-centred cubic lattice of about `count` knots over a box of `size`:
 // (m_x + 1)(m_y + 1)(m_z + 1) corners and m_x m_y m_z centres, cells of equal sides as near as
-// the box allows: each m_a the floor or the ceiling of size_a / cell, whichever combination
-// comes nearest `count` (rounding each alone gave 91 knots for 40 on a cube).
+// the box allows: each m_a one less than the floor, the floor or the ceiling of size_a / cell,
+// whichever combination comes nearest `count`, ties toward fewer (rounding each alone gave 91
+// knots for 40 on a cube; the counts of cubic cells, (m + 1)^3 + m^3, are too far apart: 91,
+// 189, 341, so sides from 2/3 to 3/2 of the ideal cell are allowed, and the plain rounding
+// always, which a flat box needs).
 Eigen::Vector3i lattice_cells(const Eigen::Vector3d& size, int count) {
   const double cell = std::cbrt(2 * size.prod() / std::max(count, 2));
   Eigen::Vector3i best = Eigen::Vector3i::Ones();
-  long long best_gap = -1;
-  for (int c = 0; c < 8; ++c) {
+  long long best_gap = -1, best_knots = 0;
+  for (int c = 0; c < 27; ++c) {
     Eigen::Vector3i m;
-    for (int a = 0; a < 3; ++a) {
+    for (int a = 0, code = c; a < 3; ++a, code /= 3) {
       const double cells = size[a] / cell;
-      m[a] = std::max(1, static_cast<int>((c >> a) & 1 ? std::ceil(cells) : std::floor(cells)));
+      m[a] = std::max(1, static_cast<int>(std::floor(cells)) + (code % 3 == 0 ? -1 : 0) + (code % 3 == 2 && cells > std::floor(cells) ? 1 : 0));
     }
+    bool near_cubic = true;
+    for (int a = 0; a < 3; ++a) {
+      const double side = size[a] / m[a];
+      const bool rounded = m[a] == std::max(1, static_cast<int>(std::lround(size[a] / cell)));
+      near_cubic = near_cubic && (rounded || (side >= (2.0 / 3.0) * cell && side <= 1.5 * cell));
+    }
+    if (!near_cubic) continue;
     const long long knots = 1LL * (m.x() + 1) * (m.y() + 1) * (m.z() + 1) + 1LL * m.x() * m.y() * m.z();
     const long long gap = std::abs(knots - count);
-    if (best_gap < 0 || gap < best_gap) {
+    if (best_gap < 0 || gap < best_gap || (gap == best_gap && knots < best_knots)) {
       best = m;
       best_gap = gap;
+      best_knots = knots;
     }
   }
   return best;

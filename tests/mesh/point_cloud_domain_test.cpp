@@ -187,7 +187,7 @@ TEST(PointCloudDomain, ALatticeLayoutCoversTheBoxWithAboutTheAskedNumberOfKnots)
   const PointCloudDomain domain = point_cloud_domain(points, options);
   ASSERT_NO_THROW(validate_tetrahedral_mesh(domain.mesh));
   EXPECT_NEAR(tetrahedral_mesh_volume(domain.mesh), 2.0, 1e-12);  // the box, corners kept
-  // cbrt(2 · 2 / 60) = 0.405, so 4.94 x 2.47 x 2.47 cells: of the floors and ceilings, 4 x 2 x 2
+  // cbrt(2 · 2 / 60) = 0.405, so 4.94 x 2.47 x 2.47 cells: of the candidates, 4 x 2 x 2
   // cells of side 0.5 come nearest 60 knots, 5 x 3 x 3 corners and 4 x 2 x 2 centres (rounding
   // each axis, 5 x 2 x 2 cells, gave 74).
   EXPECT_EQ(domain.mesh.points.size(), 45u + 16u);
