@@ -9,6 +9,7 @@
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -306,7 +307,7 @@ void fit_file(const FitRequest& r) {
             << statistics.control_points << " control points, " << statistics.knots << " knots\n";
   std::cout << "  primary knots: " << (statistics.layout == "lattice" ? "body-centred cubic lattice" : "farthest-point samples")
             << (r.layout == "auto" && statistics.layout == "lattice" ? " (the data form a complete grid)" : "") << ", fairing "
-            << format_double(statistics.fairing) << "\n";
+            << (std::ostringstream() << statistics.fairing).str() << "\n";
   std::cout << "  geometry: mean square error " << format_double(e.geometric_mean_square) << "\n";
   if (e.attributes.size() > 1)
     std::cout << "  fields: normalised mean square error " << format_double(mean_normalised_field_error(e)) << " (mean over "

@@ -254,30 +254,32 @@ std::size_t lattice_primary_knots(std::span<const Eigen::Vector3d> points, int p
   return static_cast<std::size_t>((m.x() + 1) * (m.y() + 1) * (m.z() + 1) + m.x() * m.y() * m.z());
 }
 
-bool is_complete_grid(const std::vector<Eigen::Vector3d>& points) {
-  std::array<std::vector<double>, 3> axes;
+std::optional<CompleteGrid> complete_grid_of(const std::vector<Eigen::Vector3d>& points) {
+  CompleteGrid grid;
   for (int d = 0; d < 3; ++d) {
-    auto& axis = axes[static_cast<std::size_t>(d)];
+    auto& axis = grid.axes[static_cast<std::size_t>(d)];
     axis.reserve(points.size());
     for (const Eigen::Vector3d& p : points) axis.push_back(p[d]);
     std::sort(axis.begin(), axis.end());
     axis.erase(std::unique(axis.begin(), axis.end()), axis.end());
-    if (axis.size() < 2) return false;
+    if (axis.size() < 2) return std::nullopt;
   }
-  const std::size_t nx = axes[0].size(), ny = axes[1].size();
-  if (nx * ny * axes[2].size() != points.size()) return false;
+  const std::size_t nx = grid.axes[0].size(), ny = grid.axes[1].size();
+  if (nx * ny * grid.axes[2].size() != points.size()) return std::nullopt;
   std::vector<char> seen(points.size(), 0);
+  grid.node.reserve(points.size());
   for (const Eigen::Vector3d& p : points) {
     std::array<std::size_t, 3> node{};
     for (int d = 0; d < 3; ++d) {
-      const auto& axis = axes[static_cast<std::size_t>(d)];
+      const auto& axis = grid.axes[static_cast<std::size_t>(d)];
       node[static_cast<std::size_t>(d)] = static_cast<std::size_t>(std::lower_bound(axis.begin(), axis.end(), p[d]) - axis.begin());
     }
-    char& s = seen[node[0] + nx * (node[1] + ny * node[2])];
-    if (s) return false;
-    s = 1;
+    const std::size_t index = node[0] + nx * (node[1] + ny * node[2]);
+    if (seen[index]) return std::nullopt;
+    seen[index] = 1;
+    grid.node.push_back(index);
   }
-  return true;
+  return grid;
 }
 
 PointCloudDomain point_cloud_domain(std::span<const Eigen::Vector3d> points, const PointCloudDomainOptions& options) {

@@ -11,6 +11,7 @@
 
 #include "volspline/core/elapsed_time.h"
 #include "volspline/core/error.h"
+#include "volspline/mesh/point_cloud_domain.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
 #include "../simplex/control_fit.h"
 
@@ -164,31 +165,14 @@ Eigen::VectorXd RegularGridData::nearest(const Eigen::Vector3d& x) const {
 }
 
 std::optional<RegularGridData> regular_grid_of(const VolumeData& data) {
+  std::optional<CompleteGrid> complete = complete_grid_of(data.points);
+  if (!complete) return std::nullopt;
   RegularGridData grid;
-  for (int d = 0; d < 3; ++d) {
-    auto& axis = grid.axes[static_cast<std::size_t>(d)];
-    axis.reserve(data.size());
-    for (const auto& p : data.points) axis.push_back(p[d]);
-    std::sort(axis.begin(), axis.end());
-    axis.erase(std::unique(axis.begin(), axis.end()), axis.end());
-    if (axis.size() < 2) return std::nullopt;
-  }
-  const std::size_t nx = grid.axes[0].size(), ny = grid.axes[1].size(), nz = grid.axes[2].size();
-  if (nx * ny * nz != data.size()) return std::nullopt;
+  grid.axes = std::move(complete->axes);
   grid.attribute_names = data.attribute_names;
   grid.values.resize(static_cast<Eigen::Index>(data.size()), data.attributes.cols());
-  std::vector<char> seen(data.size(), 0);
-  for (std::size_t s = 0; s < data.size(); ++s) {
-    std::array<std::size_t, 3> node{};
-    for (int d = 0; d < 3; ++d) {
-      const auto& axis = grid.axes[static_cast<std::size_t>(d)];
-      node[static_cast<std::size_t>(d)] = static_cast<std::size_t>(std::lower_bound(axis.begin(), axis.end(), data.points[s][d]) - axis.begin());
-    }
-    const std::size_t index = node[0] + nx * (node[1] + ny * node[2]);
-    if (seen[index]) return std::nullopt;
-    seen[index] = 1;
-    grid.values.row(static_cast<Eigen::Index>(index)) = data.attributes.row(static_cast<Eigen::Index>(s));
-  }
+  for (std::size_t s = 0; s < data.size(); ++s)
+    grid.values.row(static_cast<Eigen::Index>(complete->node[s])) = data.attributes.row(static_cast<Eigen::Index>(s));
   return grid;
 }
 

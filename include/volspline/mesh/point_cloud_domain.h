@@ -4,6 +4,8 @@
 // ball at every data point), which removes the tetrahedra outside the object; boundary vertices
 // classified by their solid angle. Decisions: docs/fitting.md, "The domain".
 #include <cstddef>
+#include <array>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -89,9 +91,16 @@ struct PointCloudDomainOptions {
   std::vector<double> spacing;
 };
 
-/// Whether the points form a complete regular grid: at least 2 distinct values of each
-/// coordinate and every combination of them exactly once (the voxel centres of an image).
-bool is_complete_grid(const std::vector<Eigen::Vector3d>& points);
+/// The regular grid points form: its distinct x, y and z values (increasing) and, per point, its
+/// node's index (x fastest).
+struct CompleteGrid {
+  std::array<std::vector<double>, 3> axes;
+  std::vector<std::size_t> node;
+};
+/// The grid, if the points form a complete one: at least 2 distinct values of each coordinate
+/// and every combination of them exactly once (the voxel centres of an image); nullopt otherwise.
+std::optional<CompleteGrid> complete_grid_of(const std::vector<Eigen::Vector3d>& points);
+inline bool is_complete_grid(const std::vector<Eigen::Vector3d>& points) { return complete_grid_of(points).has_value(); }
 
 /// How many primary knots the lattice layout (PointCloudDomainOptions::lattice) places for these
 /// points and this primary_knots option: about as many as asked, but whole cells, so a few
