@@ -49,6 +49,7 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
       {"fold_cells_kept", s.cells_kept},
       {"rank_cells_examined", s.rank_cells_examined},
       {"rank_cells_kept", s.rank_cells_kept},
+      {"rank_minors_divided_by_faces", s.rank_minors_divided_by_faces},
       {"budget_reached", s.budget_reached},
       {"samples", s.samples},
       {"seconds", {{"faces", s.seconds_faces}, {"folds", s.seconds_folds}, {"rank_deficient", s.seconds_rank_deficient}, {"total", s.seconds_total}}}};

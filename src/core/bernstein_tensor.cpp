@@ -254,6 +254,35 @@ BernsteinTensor<D - 1> bernstein_face(const BernsteinTensor<D>& f, int direction
 }
 
 template <int D>
+BernsteinTensor<D> bernstein_divide_by_face(const BernsteinTensor<D>& f, int direction, int side) {
+  check_direction(direction, D);
+  if (side != 0 && side != 1) throw InvalidInput("a face is at side 0 or 1, got " + std::to_string(side));
+  const int n = f.degrees[static_cast<std::size_t>(direction)];
+  if (n < 1) throw InvalidInput("a polynomial of degree 0 along the direction has no factor to divide out");
+  std::array<int, D> degrees = f.degrees;
+  --degrees[static_cast<std::size_t>(direction)];
+  BernsteinTensor<D> q(degrees, f.components);
+  const std::size_t c = static_cast<std::size_t>(f.components);
+  std::size_t linear = 0;
+  for_each_index<D>(sizes_of<D>(degrees), [&](const std::array<int, D>& b) {
+    const int j = b[static_cast<std::size_t>(direction)];
+    std::array<int, D> a = b;
+    double factor = 0;
+    if (side == 0) {
+      a[static_cast<std::size_t>(direction)] = j + 1;
+      factor = static_cast<double>(n) / (j + 1);
+    } else {
+      factor = static_cast<double>(n) / (n - j);
+    }
+    const double* from = f.coefficients.data() + f.index(a) * c;
+    double* to = q.coefficients.data() + linear * c;
+    for (std::size_t k = 0; k < c; ++k) to[k] = from[k] * factor;
+    ++linear;
+  });
+  return q;
+}
+
+template <int D>
 std::pair<double, double> bernstein_coefficient_range(const BernsteinTensor<D>& f, int component) {
   check_component(component, f.components);
   if (f.coefficients.empty()) throw InvalidInput("the polynomial has no coefficients");
@@ -449,6 +478,7 @@ void bernstein_blossom(const BernsteinTensor<1>& f, const double* arguments, dou
   template BernsteinTensor<D> bernstein_product(const BernsteinTensor<D>&, const BernsteinTensor<D>&);              \
   template BernsteinTensor<D> bernstein_power(const BernsteinTensor<D>&, int);                                      \
   template BernsteinTensor<D> bernstein_elevate(const BernsteinTensor<D>&, const BernsteinDegrees<D>&);              \
+  template BernsteinTensor<D> bernstein_divide_by_face(const BernsteinTensor<D>&, int, int);                        \
   template void bernstein_add(BernsteinTensor<D>&, const BernsteinTensor<D>&);                                      \
   template BernsteinTensor<D> bernstein_components(const BernsteinTensor<D>&, int, int);                            \
   template ScaledBernsteinTensor<D> bernstein_scaled(const BernsteinTensor<D>&);                                    \

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include <Eigen/Geometry>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "volspline/analysis/jacobian_determinant.h"
@@ -26,6 +27,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kMaxFinestLevel = 12;
+// Spare coefficient buffers a thread keeps for the subdivision's children (16 per split).
+constexpr std::size_t kSpareBuffers = 64;
 // Bits per lattice coordinate of a grid vertex key: four of them and a 4-bit edge direction fill
 // 64 bits.
 constexpr int kCoordinateBits = 15;
@@ -90,6 +93,49 @@ class Subdivision {
       throw InvalidInput("generator is not a volume: its Jacobian vanishes identically");
     }
     for (std::size_t k = 0; k < 4; ++k) margins_[k] = kRelativeMargin * reference[k];
+    if (options.bounds == JacobianBoundMethod::Bezier) {
+      for (std::size_t p = 0; p < pieces_.size(); ++p) divide_out_face_factors(p, roots_[p].tensor);
+    }
+  }
+
+  // A minor that vanishes on a face of the domain (a collapsed face: a cylinder's axis, where
+  // the angle's derivative is zero, makes J123, J134 and J234 vanish there) is divided by the
+  // face's linear factor, as often as it vanishes there. Inside the domain the factor is
+  // positive, so the four minors vanish together at the same interior points as before; the
+  // face itself is the face sweeps' business (docs/envelopes.md, "Collapsed faces"). Without the
+  // division no certificate can exclude the cells along the face (every minor but one is zero
+  // there, and the last changes sign along it), and they are all kept to the finest level: on
+  // Fig. 7 16,384 cells of junk along the axis. Only faces on the domain's boundary: a minor
+  // vanishing on a knot plane inside vanishes at interior points, which must stay.
+  void divide_out_face_factors(std::size_t piece, BernsteinTensor<4>& minors) {
+    std::array<int, 4> position{};
+    std::size_t index = piece;
+    for (std::size_t d = 0; d < 4; ++d) {
+      position[d] = static_cast<int>(index % static_cast<std::size_t>(counts_[d]));
+      index /= static_cast<std::size_t>(counts_[d]);
+    }
+    for (int k = 0; k < 4; ++k) {
+      const double margin = margins_[static_cast<std::size_t>(k)];
+      BernsteinTensor<4> minor = bernstein_components(minors, k);
+      if (!(bernstein_max_abs(minor) > margin)) continue;
+      bool divided = false;
+      for (int d = 0; d < 4; ++d) {
+        for (int side = 0; side < 2; ++side) {
+          const bool on_boundary = side == 0 ? position[static_cast<std::size_t>(d)] == 0
+                                             : position[static_cast<std::size_t>(d)] == counts_[static_cast<std::size_t>(d)] - 1;
+          if (!on_boundary) continue;
+          while (minor.degrees[static_cast<std::size_t>(d)] > 0 && !(bernstein_max_abs(bernstein_face(minor, d, side)) > margin)) {
+            minor = bernstein_divide_by_face(minor, d, side);
+            divided = true;
+          }
+        }
+      }
+      if (!divided) continue;
+      minor = bernstein_elevate(minor, minors.degrees);
+      const std::size_t n = minors.count();
+      for (std::size_t i = 0; i < n; ++i) minors.coefficients[4 * i + static_cast<std::size_t>(k)] = minor.coefficients[i];
+      ++divided_minors_;
+    }
   }
 
   const std::vector<Cell>& roots() const { return roots_; }
@@ -147,25 +193,27 @@ class Subdivision {
       return;
     }
     // 16 children: split along u, then v, w, t; child bit (3 - d) says "upper half along d".
-    std::vector<BernsteinTensor<4>> parts{cell.tensor};
-    for (int d = 0; d < 4; ++d) {
-      std::vector<BernsteinTensor<4>> next;
-      next.reserve(2 * parts.size());
-      for (const auto& part : parts) {
-        auto halves = bernstein_split(part, d);
-        next.push_back(std::move(halves.first));
-        next.push_back(std::move(halves.second));
-      }
-      parts = std::move(next);
+    // The halves along u, v and w are this thread's scratch tensors and the children's
+    // coefficients come from its spare buffers: the tensors are large ((3p + 1)^4 4-vectors,
+    // 300 KB for Fig. 7's rational minors), and allocating, zeroing and copying 30 of them per
+    // split cost two thirds of the subdivision's time (docs/performance.md).
+    std::array<Cell, 16> children;
+    {
+      SplitScratch& scratch = scratch_.local();
+      bernstein_split(cell.tensor, 0, 0.5, scratch.halves[0], scratch.halves[1]);
+      for (std::size_t i = 0; i < 2; ++i) bernstein_split(scratch.halves[i], 1, 0.5, scratch.quarters[2 * i], scratch.quarters[2 * i + 1]);
+      for (std::size_t i = 0; i < 4; ++i) bernstein_split(scratch.quarters[i], 2, 0.5, scratch.eighths[2 * i], scratch.eighths[2 * i + 1]);
+      for (std::size_t i = 0; i < 16; ++i) children[i].tensor.coefficients = scratch.take_buffer();
+      for (std::size_t i = 0; i < 8; ++i) bernstein_split(scratch.eighths[i], 3, 0.5, children[2 * i].tensor, children[2 * i + 1].tensor);
     }
     std::array<std::vector<Lattice>, 16> child_kept;
     tbb::parallel_for(0, 16, [&](int i) {
-      Cell child;
+      Cell& child = children[static_cast<std::size_t>(i)];
       child.piece = cell.piece;
       child.level = cell.level + 1;
       for (std::size_t d = 0; d < 4; ++d) child.origin[d] = 2 * cell.origin[d] + ((i >> (3 - d)) & 1);
-      child.tensor = std::move(parts[static_cast<std::size_t>(i)]);
       explore(child, child_kept[static_cast<std::size_t>(i)]);
+      scratch_.local().give_back(std::move(child.tensor.coefficients));
     });
     for (const auto& k : child_kept) kept.insert(kept.end(), k.begin(), k.end());
   }
@@ -178,6 +226,7 @@ class Subdivision {
     stats.cells_excluded_by_cone = by_cone_.load();
     stats.cells_unresolved = unresolved_.load();
     stats.budget_exhausted = stats.cells_unresolved > 0;
+    stats.minors_divided_by_faces = divided_minors_;
   }
 
  private:
@@ -188,6 +237,27 @@ class Subdivision {
   std::array<int, 4> counts_{};
   std::array<double, 4> margins_{};
   std::vector<Cell> roots_;
+  // Per thread: the halves, quarters and eighths of a split, and coefficient buffers of
+  // finished children for the next split's children (their sizes are kept, so reusing one
+  // neither allocates nor zeroes). Buffers move between threads with the cells; each thread
+  // keeps at most kSpareBuffers.
+  struct SplitScratch {
+    std::array<BernsteinTensor<4>, 2> halves;
+    std::array<BernsteinTensor<4>, 4> quarters;
+    std::array<BernsteinTensor<4>, 8> eighths;
+    std::vector<std::vector<double>> spare;
+    std::vector<double> take_buffer() {
+      if (spare.empty()) return {};
+      std::vector<double> buffer = std::move(spare.back());
+      spare.pop_back();
+      return buffer;
+    }
+    void give_back(std::vector<double>&& buffer) {
+      if (spare.size() < kSpareBuffers) spare.push_back(std::move(buffer));
+    }
+  };
+  tbb::enumerable_thread_specific<SplitScratch> scratch_;
+  int divided_minors_ = 0;
   std::atomic<std::int64_t> examined_{0}, by_sign_{0}, without_fold_{0}, by_hull_{0}, by_cone_{0}, unresolved_{0};
 };
 

@@ -342,6 +342,35 @@ TEST(BernsteinTensor, FaceRestrictionIsEvaluationOnTheFace) {
   check_faces<4>(rng);
 }
 
+// f = x_d q (or (1 - x_d) q) for a random q: dividing by that face's factor gives q back, and
+// the quotient's values are f's divided by the factor, in the open box.
+TEST(BernsteinTensor, DivisionByAFaceFactorUndoesTheProduct) {
+  std::mt19937 rng(31);
+  const BernsteinTensor<3> q = random_tensor<3>(rng, {2, 3, 1}, 2);
+  for (int d = 0; d < 3; ++d) {
+    for (int side = 0; side < 2; ++side) {
+      std::array<int, 3> linear_degrees{0, 0, 0};
+      linear_degrees[static_cast<std::size_t>(d)] = 1;
+      BernsteinTensor<3> factor(linear_degrees, 1);
+      factor.coefficients = side == 0 ? std::vector<double>{0.0, 1.0} : std::vector<double>{1.0, 0.0};
+      const BernsteinTensor<3> f = bernstein_product(q, factor);
+      const BernsteinTensor<3> back = bernstein_divide_by_face(f, d, side);
+      ASSERT_EQ(back.degrees, q.degrees);
+      ASSERT_EQ(back.components, 2);
+      for (std::size_t i = 0; i < q.coefficients.size(); ++i) EXPECT_NEAR(back.coefficients[i], q.coefficients[i], 1e-14);
+      for (int trial = 0; trial < 10; ++trial) {
+        const auto s = random_parameter<3>(rng);
+        const double x = s[static_cast<std::size_t>(d)], l = side == 0 ? x : 1 - x;
+        for (int c = 0; c < 2; ++c) EXPECT_NEAR(evaluate_by_basis(back, s, c) * l, evaluate_by_basis(f, s, c), 1e-13);
+      }
+    }
+  }
+  BernsteinTensor<3> constant({0, 1, 1}, 1);
+  EXPECT_THROW(bernstein_divide_by_face(constant, 0, 0), InvalidInput);
+  EXPECT_THROW(bernstein_divide_by_face(q, 3, 0), InvalidInput);
+  EXPECT_THROW(bernstein_divide_by_face(q, 0, 2), InvalidInput);
+}
+
 TEST(BernsteinTensor, BlossomOnTheDiagonalIsTheValueAndIsSymmetric) {
   std::mt19937 rng(71);
   const auto f = random_tensor<1>(rng, {4}, 2);

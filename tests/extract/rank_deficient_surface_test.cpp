@@ -241,6 +241,41 @@ TEST(RankDeficientSurface, TinyProtrusionIsFoundAndTheSurfaceIsClosedInTheInteri
 // u = a, w = c. Along d = (1, 0, e), p . d = (w - c) + e: the rank-deficient set is the plane
 // {w = c - e, u = a + e^2} x (v, t); f = 2 (w - c)(w - c + e) changes sign on the cusp plane
 // {u = a, w = c} x (v, t) too, where s_t is at the angle asin(e / sqrt(1 + e^2)) to the image plane.
+// A wedge whose face u = 0 collapses to the z axis, folded across v = c, translated:
+// g = (u (1 - w), u w, (v - c)^2), s = g + t d. s_w = u (-1, 1, 0) vanishes on the face, so J123
+// = u h_v (sign: h_v), J134 = u (d_z) and J234 vanish there, and J124 = -h_v ((1 - w) d_y - w d_x)
+// changes sign along it: on the face the four vanish together along v = c. Inside (u > 0) they
+// never do: J134 = u d_z. Undivided, no certificate excludes the cells along the face (without
+// the division: 1,361 cells examined, 256 kept at the finest level); divided by u, J134 / u =
+// d_z keeps a sign and the root cell is excluded at once.
+TEST(RankDeficientSurface, MinorsVanishingOnACollapsedFaceAreDividedByItsFactor) {
+  constexpr double c = 0.37;
+  const std::array<double, 3> d{1.0, 1.0, 0.5};
+  const std::array<double, 3> h{c * c, c * (c - 1), (1 - c) * (1 - c)};  // (v - c)^2 in Bernstein form
+  std::vector<double> points;
+  for (int l = 0; l <= 1; ++l)
+    for (int k = 0; k <= 1; ++k)
+      for (int j = 0; j <= 2; ++j)
+        for (int i = 0; i <= 1; ++i) {
+          const std::array<double, 3> g{static_cast<double>(i * (1 - k)), static_cast<double>(i * k), h[static_cast<std::size_t>(j)]};
+          for (std::size_t r = 0; r < 3; ++r) points.push_back(g[r] + l * d[r]);
+        }
+  const BSplineHypervolume map({KnotVector::bezier(1), KnotVector::bezier(2), KnotVector::bezier(1), KnotVector::bezier(1)}, 3,
+                               std::move(points));
+  // The identities the test rests on, at a point inside and one on the face.
+  const auto inside = sub_jacobians_at(map, {0.3, 0.8, 0.6, 0.5});
+  EXPECT_NEAR(inside[2], 0.3 * d[2], 1e-12);
+  const auto face = sub_jacobians_at(map, {0.0, c, 0.6, 0.5});
+  for (double x : face) EXPECT_NEAR(x, 0.0, 1e-12);
+  RankDeficientOptions options;
+  options.tolerance = 1.0 / 16;
+  const auto s = rank_deficient_surface(map, options);
+  EXPECT_GE(s.stats.minors_divided_by_faces, 3);
+  EXPECT_EQ(s.stats.cells_examined, 1);
+  EXPECT_EQ(s.stats.cells_kept, 0);
+  EXPECT_EQ(s.mesh.num_triangles(), 0u);
+}
+
 TEST(RankDeficientSurface, CuspSheetIsDroppedAndTheRankDeficientPlaneKept) {
   const double a = 0.3, c = 0.45, e = 0.2;
   const std::vector<Monomial> h{{1.0 / 3, 0, 0, 3}, {-c, 0, 0, 2}, {c * c, 0, 0, 1}, {-c * c * c / 3, 0, 0, 0},

@@ -143,6 +143,17 @@ template <int D>
   requires(D >= 2)
 BernsteinTensor<D - 1> bernstein_face(const BernsteinTensor<D>& f, int direction, int side);
 
+/// The quotient q of f = s_direction q (side 0) or f = (1 - s_direction) q (side 1), one degree
+/// lower along `direction`: q_j = f_{j+1} n / (j + 1), or q_j = f_j n / (n - j), from
+/// s B_j^{n-1} = (j + 1)/n B_{j+1}^n and (1 - s) B_j^{n-1} = (n - j)/n B_j^n. Exact when f
+/// vanishes on that face; f's coefficients on the face are not read (the caller establishes that
+/// they vanish). A factor that vanishes on a face of the box is positive inside it, so q has
+/// the zeros and signs of f in the open box.
+/// \throw InvalidInput if direction is not in [0, D), side is not 0 or 1, or the degree along
+/// direction is 0.
+template <int D>
+BernsteinTensor<D> bernstein_divide_by_face(const BernsteinTensor<D>& f, int direction, int side);
+
 /// The smallest and the largest coefficient of `component`: by the convex hull property they
 /// bound that component of f on the box.
 /// \throw InvalidInput if f has no coefficients or the component does not exist.

@@ -69,6 +69,9 @@ struct RankDeficientOptions {
 struct RankDeficientStats {
   /// L: the kept cells are 2^-L of their Bézier piece along every parameter.
   int finest_level = 0;
+  /// Minors of Bézier pieces divided by the linear factor of a domain face they vanish on (a
+  /// collapsed face: a cylinder's axis, a ball's poles), counted once per piece and minor.
+  int minors_divided_by_faces = 0;
   std::int64_t cells_examined = 0;
   /// Cells excluded by each certificate (RankCertificate Sign, Hull, Cone).
   std::int64_t cells_excluded_by_sign = 0, cells_excluded_by_hull = 0, cells_excluded_by_cone = 0;

@@ -103,6 +103,8 @@ struct SweptEnvelopeStats {
   /// Cells of the 3-face zero surfaces and of the rank-deficient set.
   std::int64_t cells_examined = 0, cells_kept = 0;
   std::int64_t rank_cells_examined = 0, rank_cells_kept = 0;
+  /// Minors divided by the factor of a collapsed domain face (RankDeficientStats).
+  int rank_minors_divided_by_faces = 0;
   bool budget_reached = false;
   std::array<int, 4> samples{};
   double seconds_faces = 0, seconds_folds = 0, seconds_rank_deficient = 0, seconds_total = 0;
