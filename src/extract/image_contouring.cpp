@@ -1136,7 +1136,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         for (std::size_t i = 0; i < corners.size(); ++i)
           for (std::size_t j = 0; j < i; ++j) {
             const ContourCrossing &xi = crossings[static_cast<std::size_t>(corners[i])], &xj = crossings[static_cast<std::size_t>(corners[j])];
-            if (!xi.on_sheet || !xj.on_sheet || sheet_of_triangle[xi.triangle] == sheet_of_triangle[xj.triangle]) continue;
+            if (!xi.on_sheet || !xj.on_sheet) continue;
             const double c = std::abs(xi.normal.dot(xj.normal));
             if (c < smallest) smallest = c, first = i, second = j;
           }
@@ -1422,6 +1422,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       refinement.shortest_edge = 1e-3 * grid.h;
       refinement.inside = checked_inside;
       refinement.check_distance = 0.25 * reach;
+      if (options.crease_angle_degrees > 0) refinement.branch_angle_degrees = options.crease_angle_degrees;
       const std::size_t before = sheet_vertices.size();
       const SheetRefinementStats r = refine_to_sheets(result, sheet_vertices, sheet_crossing_from, refinement, &face_origin);
       for (std::size_t v = before; v < sheet_vertices.size(); ++v) {

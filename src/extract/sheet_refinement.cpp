@@ -101,6 +101,8 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
   if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) throw InvalidInput("expected a positive tolerance", "tolerance");
   if (!(options.shortest_edge >= 0)) throw InvalidInput("expected shortest_edge >= 0", "shortest_edge");
   if (options.max_rounds < 0 || options.max_rounds > 60) throw InvalidInput("expected 0 to 60 rounds", "max_rounds");
+  if (!(options.branch_angle_degrees >= 0 && options.branch_angle_degrees <= 90))
+    throw InvalidInput("expected a branch angle of 0 to 90 degrees", "branch_angle_degrees");
   validate_mesh(mesh);
   if (options.inside && !(options.check_distance > 0))
     throw InvalidInput("expected a positive check_distance with a membership test", "check_distance");
@@ -121,25 +123,33 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     EdgeKind kind = EdgeKind::None;
     SheetPoint p, q;
   };
+  // Two points of one sheet lie on one branch of it unless their normals differ by more than
+  // the branch angle: a sheet that crosses itself (a face sweep's fold folding over, Fig. 5's
+  // ridge) makes a crease between two of its own branches, whose parameters are far apart.
+  const double branch_cos = options.branch_angle_degrees > 0 ? std::cos(options.branch_angle_degrees * 3.14159265358979323846 / 180) : -1.0;
+  const auto same_branch = [&](const SheetPoint& a, const SheetPoint& b) {
+    return a.sheet >= 0 && a.sheet == b.sheet && std::abs(a.normal.normalized().dot(b.normal.normalized())) >= branch_cos;
+  };
   auto edge_kind = [&](const SheetVertex& vp, const SheetVertex& vq) {
     Shared shared;
     const auto crease = [](const SheetVertex& v) { return v.on[0].sheet >= 0 && v.on[1].sheet >= 0; };
-    if (crease(vp) && crease(vq)) {
-      if (vp.on[0].sheet == vq.on[0].sheet && vp.on[1].sheet == vq.on[1].sheet) {
-        shared.kind = EdgeKind::Crease;
-        return shared;
-      }
-      if (vp.on[0].sheet == vq.on[1].sheet && vp.on[1].sheet == vq.on[0].sheet) {
-        shared.kind = EdgeKind::Crease;
-        return shared;
-      }
+    if (crease(vp) && crease(vq) && ((same_branch(vp.on[0], vq.on[0]) && same_branch(vp.on[1], vq.on[1])) ||
+                                     (same_branch(vp.on[0], vq.on[1]) && same_branch(vp.on[1], vq.on[0])))) {
+      shared.kind = EdgeKind::Crease;
+      return shared;
     }
+    // On one branch of a common sheet: the pair whose normals agree best.
+    double best = -1;
     for (const SheetPoint& a : vp.on)
       for (const SheetPoint& b : vq.on)
-        if (a.sheet >= 0 && a.sheet == b.sheet && shared.kind == EdgeKind::None) {
-          shared.kind = EdgeKind::Sheet;
-          shared.p = a;
-          shared.q = b;
+        if (same_branch(a, b)) {
+          const double c = std::abs(a.normal.normalized().dot(b.normal.normalized()));
+          if (c > best) {
+            best = c;
+            shared.kind = EdgeKind::Sheet;
+            shared.p = a;
+            shared.q = b;
+          }
         }
     if (shared.kind == EdgeKind::None && !crease(vp) && !crease(vq) && vp.on[0].sheet >= 0 && vq.on[0].sheet >= 0 &&
         std::abs(vp.on[0].normal.normalized().dot(vq.on[0].normal.normalized())) >= (options.inside ? checked_seam_cos : seam_cos)) {
@@ -153,7 +163,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
       double smallest = 2;
       for (const SheetPoint& a : vp.on)
         for (const SheetPoint& b : vq.on) {
-          if (a.sheet < 0 || b.sheet < 0 || a.sheet == b.sheet) continue;
+          if (a.sheet < 0 || b.sheet < 0 || same_branch(a, b)) continue;
           const double c = std::abs(a.normal.normalized().dot(b.normal.normalized()));
           if (c < smallest) {
             smallest = c;

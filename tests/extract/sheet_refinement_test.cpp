@@ -143,5 +143,143 @@ TEST(SheetRefinement, EdgesAcrossTwoSheetsAtACreaseAreCountedNotSplit) {
   EXPECT_THROW(refine_to_sheets(mesh, copy, crossing, unchecked), InvalidInput);
 }
 
+// One sheet with two branches that cross (the boundary of the union of two unit balls centred
+// at (-0.8, 0, 0) and (0.8, 0, 0), both spheres one sheet as a face sweep's fold that folds over
+// itself is): the parameters are the point and, fourth, the branch (-1 or 1; anything else, a
+// mean of the two branches, has no crossing).
+std::optional<SheetCrossing> two_ball_crossing(const Eigen::Vector4d& start, double lambda, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  if (std::abs(std::abs(start[3]) - 1) > 1e-12) return std::nullopt;
+  const Eigen::Vector3d centre(0.8 * start[3], 0, 0);
+  std::optional<SheetCrossing> c = sphere_crossing(start, lambda, a - centre, b - centre);
+  if (!c) return c;
+  c->parameters += centre;
+  c->extra = start[3];
+  return c;
+}
+
+TEST(SheetRefinement, TwoBranchesOfOneSheetAreToldApartByTheirNormals) {
+  // A coarse mesh of the union's boundary: 16 vertices on the circle where the spheres cross
+  // (x = 0, radius 0.6; the branches' normals there 74 degrees apart), on each sphere rings
+  // every 13 degrees of latitude from there to its far pole (x = -1.8 or 1.8), so that
+  // neighbours on one branch have normals at most 22.5 degrees apart.
+  const auto make = [](std::vector<SheetVertex>& vertices, bool crease_on_both) {
+    TriangleMesh mesh;
+    vertices.clear();
+    auto point_on = [](int branch, const Eigen::Vector3d& x) {
+      SheetPoint p;
+      p.sheet = 0;
+      p.parameters << x, branch;
+      p.normal = x - Eigen::Vector3d(0.8 * branch, 0, 0);
+      return p;
+    };
+    const int longitudes = 16, rings = 10;
+    const double crease_angle = std::acos(0.8);
+    auto add = [&](const Eigen::Vector3d& x, int branch, bool crease) {
+      mesh.add_vertex(x, x);
+      SheetVertex v;
+      v.on[0] = point_on(crease ? -1 : branch, x);
+      if (crease && crease_on_both) v.on[1] = point_on(1, x);
+      vertices.push_back(v);
+      return static_cast<int>(mesh.num_vertices()) - 1;
+    };
+    std::vector<int> crease;
+    for (int k = 0; k < longitudes; ++k) {
+      const double around = 2 * std::numbers::pi * k / longitudes;
+      crease.push_back(add(Eigen::Vector3d(0, 0.6 * std::cos(around), 0.6 * std::sin(around)), 0, true));
+    }
+    for (int branch : {-1, 1}) {
+      std::vector<int> previous = crease;
+      for (int r = 1; r <= rings + 1; ++r) {
+        const double phi = crease_angle + r * (std::numbers::pi - crease_angle) / (rings + 1);
+        std::vector<int> ring;
+        if (r == rings + 1) {
+          const int pole = add(Eigen::Vector3d(1.8 * branch, 0, 0), branch, false);
+          ring.assign(static_cast<std::size_t>(longitudes), pole);
+        } else {
+          for (int k = 0; k < longitudes; ++k) {
+            const double around = 2 * std::numbers::pi * k / longitudes;
+            ring.push_back(add(Eigen::Vector3d(0.8 * branch - branch * std::cos(phi), std::sin(phi) * std::cos(around), std::sin(phi) * std::sin(around)),
+                               branch, false));
+          }
+        }
+        for (int k = 0; k < longitudes; ++k) {
+          const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>((k + 1) % longitudes);
+          std::array<int, 3> first{previous[i], previous[j], ring[j]}, second{previous[i], ring[j], ring[i]};
+          if (branch < 0) std::swap(first[1], first[2]), std::swap(second[1], second[2]);
+          mesh.add_triangle(first[0], first[1], first[2], 14);
+          if (r <= rings) mesh.add_triangle(second[0], second[1], second[2], 14);
+        }
+        previous = ring;
+      }
+    }
+    return mesh;
+  };
+  const SheetCrossingFrom crossing = [](std::size_t, const Eigen::Vector4d& start, double lambda, const Eigen::Vector3d& a,
+                                        const Eigen::Vector3d& b) { return two_ball_crossing(start, lambda, a, b); };
+  const auto on_union_boundary = [](const Eigen::Vector3d& x) {
+    const double a = (x - Eigen::Vector3d(-0.8, 0, 0)).norm(), b = (x - Eigen::Vector3d(0.8, 0, 0)).norm();
+    return std::min(a, b) - 1;  // signed distance to the union's boundary, exact outside, a bound inside
+  };
+  SheetRefinementOptions options;
+  options.tolerance = 2e-3;
+  options.branch_angle_degrees = 50;
+  std::vector<SheetVertex> vertices;
+  TriangleMesh mesh = make(vertices, true);
+  ASSERT_GT(enclosed_volume(mesh), 0);
+  const SheetRefinementStats stats = refine_to_sheets(mesh, vertices, crossing, options);
+  EXPECT_EQ(stats.edges_above_tolerance, 0);
+  EXPECT_EQ(stats.failed_edges, 0);
+  EXPECT_EQ(stats.unresolved_edges, 0);
+  EXPECT_TRUE(edge_statistics(mesh).closed_and_oriented());
+  // Every vertex on its own branch (and so on the union's boundary), the crease vertices on both.
+  std::size_t crease_vertices = 0;
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
+    const Eigen::Vector3d& x = mesh.positions[v];
+    EXPECT_NEAR(on_union_boundary(x), 0, 1e-9) << v;
+    for (const SheetPoint& p : vertices[v].on) {
+      if (p.sheet < 0) continue;
+      EXPECT_NEAR((x - Eigen::Vector3d(0.8 * p.parameters[3], 0, 0)).norm(), 1, 1e-9) << v;
+    }
+    if (vertices[v].on[1].sheet >= 0) {
+      ++crease_vertices;
+      EXPECT_NEAR(x.x(), 0, 1e-9);
+      EXPECT_NE(vertices[v].on[0].parameters[3], vertices[v].on[1].parameters[3]);
+    }
+  }
+  EXPECT_GT(crease_vertices, 16u);  // the crease edges were split along the circle
+  // Every edge's midpoint within the tolerance of the boundary (inside it: the chords of convex
+  // parts).
+  for (const auto& t : mesh.triangles)
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d m =
+          0.5 * (mesh.positions[static_cast<std::size_t>(t[static_cast<std::size_t>(j)])] + mesh.positions[static_cast<std::size_t>(t[static_cast<std::size_t>((j + 1) % 3)])]);
+      EXPECT_LE(std::abs(on_union_boundary(m)), options.tolerance * 1.0001);
+    }
+  // With the crease vertices on the first branch alone, the edges from them to the second
+  // branch's first ring join two branches: across the crease, not refined, each counted. Taken
+  // for one branch (branch angle 0), the sheet is refined along those edges too: Newton from the
+  // mean of two branches' parameters finds nothing, and edges stay above the tolerance.
+  std::vector<SheetVertex> one_sided;
+  TriangleMesh one_sided_mesh = make(one_sided, false);
+  std::vector<SheetVertex> one_sided_plain = one_sided;
+  TriangleMesh one_sided_plain_mesh = one_sided_mesh;
+  const SheetRefinementStats across = refine_to_sheets(one_sided_mesh, one_sided, crossing, options);
+  EXPECT_EQ(across.failed_edges, 0);
+  EXPECT_EQ(across.edges_above_tolerance, 0);
+  EXPECT_GE(across.unresolved_edges, 32);  // two per quadrilateral of the first ring of the second branch
+  ASSERT_EQ(across.unverified_edges.size(), static_cast<std::size_t>(across.unresolved_edges));
+  for (const auto& [p, q] : across.unverified_edges)
+    EXPECT_NE(one_sided[static_cast<std::size_t>(p)].on[0].parameters[3], one_sided[static_cast<std::size_t>(q)].on[0].parameters[3]) << p << " " << q;
+  EXPECT_TRUE(edge_statistics(one_sided_mesh).closed_and_oriented());
+  SheetRefinementOptions one_branch = options;
+  one_branch.branch_angle_degrees = 0;
+  const SheetRefinementStats along = refine_to_sheets(one_sided_plain_mesh, one_sided_plain, crossing, one_branch);
+  EXPECT_GT(along.failed_edges, 0);
+  EXPECT_GT(along.edges_above_tolerance, 0);
+  SheetRefinementOptions bad = options;
+  bad.branch_angle_degrees = 91;
+  EXPECT_THROW(refine_to_sheets(mesh, vertices, crossing, bad), InvalidInput);
+}
+
 }  // namespace
 }  // namespace volspline

@@ -65,6 +65,12 @@ struct SheetRefinementOptions {
   /// Edges between two sheets whose normals at the ends are at most this far apart (a seam of
   /// one smooth surface, e.g. between patches) are refined too, on either end's sheet.
   double seam_angle_degrees = 20;
+  /// If positive: two points of one sheet whose normals are farther apart than this lie on two
+  /// branches of it (the sheet crosses itself, making a crease of the boundary), and an edge
+  /// between them is refined as across a crease, not along the sheet. Only for meshes whose
+  /// edges are short against the sheets' curvature (a contour, whose cells call normals that far
+  /// apart a crease); 0 (default): a sheet is one branch.
+  double branch_angle_degrees = 0;
   /// With a membership test: edges between two sheets whose normals are farther apart (up to
   /// 80°: a seam on a curved surface, or a crease) are split too where the split point is on
   /// the boundary, i.e. `inside` answers differently at check_distance on either side of it
