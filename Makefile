@@ -32,33 +32,36 @@ bench: build
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (used by CI), without the
 # tests labelled "slow" (minutes each under the sanitizers; `make test` runs them). -g1 keeps line
 # numbers in the sanitizers' stack traces at a fraction of the cost of full debug information.
-# ASAN_LABELS= runs everything.
+# ASAN_LABELS= runs everything. Built with clang, the same build also holds the libFuzzer targets
+# (`make fuzz`): the library is compiled once for both (docs/testing.md).
 ASAN_LABELS ?= -LE slow
+SANITIZER_CONFIGURE = CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O0 -g1" -DVOLSPLINE_SANITIZE=ON -DVOLSPLINE_BUILD_FUZZ=ON -DVOLSPLINE_BUILD_BENCH=OFF $(UNITY_FLAGS) $(CMAKE_FLAGS) >/dev/null
 asan: deps
-	@cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O0 -g1" -DVOLSPLINE_SANITIZE=ON -DVOLSPLINE_BUILD_BENCH=OFF $(UNITY_FLAGS) $(CMAKE_FLAGS) >/dev/null
+	@$(SANITIZER_CONFIGURE)
 	@cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) $(ASAN_LABELS)
 
-# libFuzzer targets built with clang (-O1 with line tables: what the sanitizers need for their
-# reports, cheaper to build than RelWithDebInfo); FUZZ_SECONDS per target (EXCHANGE_FUZZ_SECONDS
-# for the scene, G+Smo, IRIT and VTU readers).
+# libFuzzer targets, in the sanitizer build (clang, AddressSanitizer + UndefinedBehaviorSanitizer,
+# coverage instrumentation in the whole library); FUZZ_SECONDS per target (EXCHANGE_FUZZ_SECONDS
+# for the scene, G+Smo, IRIT, VTU, skeleton and volume-data readers).
 FUZZ_SECONDS ?= 10
 EXCHANGE_FUZZ_SECONDS ?= 5
+FUZZ = build-asan/bin
+FUZZ_WORK = build-asan/fuzz-work
 fuzz: deps
-	@CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" -DVOLSPLINE_BUILD_FUZZ=ON -DVOLSPLINE_BUILD_TESTS=OFF -DVOLSPLINE_BUILD_BENCH=OFF $(UNITY_FLAGS) >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz gismo_xml_fuzz irit_itd_fuzz vtu_reader_fuzz skeleton_reader_fuzz volume_data_fuzz
-	mkdir -p build-fuzz/corpus build-fuzz/corpus-mesh && cp examples/*.json build-fuzz/corpus/ 2>/dev/null || true
-	build-fuzz/bin/model_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 build-fuzz/corpus fuzz/corpus
-	build-fuzz/bin/mesh_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-mesh fuzz/corpus-mesh
-	mkdir -p build-fuzz/corpus-scene build-fuzz/corpus-gismo build-fuzz/corpus-irit build-fuzz/corpus-vtu
-	build-fuzz/bin/scene_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 build-fuzz/corpus-scene fuzz/corpus-scene
-	build-fuzz/bin/gismo_xml_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-gismo fuzz/corpus-gismo
-	build-fuzz/bin/irit_itd_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-irit fuzz/corpus-irit
-	build-fuzz/bin/vtu_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-vtu fuzz/corpus-vtu
-	mkdir -p build-fuzz/corpus-skeleton && cp examples/skeletons/*.json build-fuzz/corpus-skeleton/
-	build-fuzz/bin/skeleton_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-skeleton fuzz/corpus-skeleton
-	mkdir -p build-fuzz/corpus-volume
-	build-fuzz/bin/volume_data_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 build-fuzz/corpus-volume fuzz/corpus-volume
+	@$(SANITIZER_CONFIGURE)
+	@cmake --build build-asan -j $(JOBS) --target model_reader_fuzz mesh_reader_fuzz scene_reader_fuzz gismo_xml_fuzz irit_itd_fuzz vtu_reader_fuzz skeleton_reader_fuzz volume_data_fuzz
+	mkdir -p $(FUZZ_WORK)/corpus $(FUZZ_WORK)/corpus-mesh $(FUZZ_WORK)/corpus-scene $(FUZZ_WORK)/corpus-gismo $(FUZZ_WORK)/corpus-irit $(FUZZ_WORK)/corpus-vtu $(FUZZ_WORK)/corpus-skeleton $(FUZZ_WORK)/corpus-volume
+	cp examples/*.json $(FUZZ_WORK)/corpus/ 2>/dev/null || true
+	cp examples/skeletons/*.json $(FUZZ_WORK)/corpus-skeleton/
+	$(FUZZ)/model_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 $(FUZZ_WORK)/corpus fuzz/corpus
+	$(FUZZ)/mesh_reader_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 $(FUZZ_WORK)/corpus-mesh fuzz/corpus-mesh
+	$(FUZZ)/scene_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 $(FUZZ_WORK)/corpus-scene fuzz/corpus-scene
+	$(FUZZ)/gismo_xml_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 $(FUZZ_WORK)/corpus-gismo fuzz/corpus-gismo
+	$(FUZZ)/irit_itd_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 $(FUZZ_WORK)/corpus-irit fuzz/corpus-irit
+	$(FUZZ)/vtu_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 $(FUZZ_WORK)/corpus-vtu fuzz/corpus-vtu
+	$(FUZZ)/skeleton_reader_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 $(FUZZ_WORK)/corpus-skeleton fuzz/corpus-skeleton
+	$(FUZZ)/volume_data_fuzz -max_total_time=$(EXCHANGE_FUZZ_SECONDS) -max_len=65536 -rss_limit_mb=2048 $(FUZZ_WORK)/corpus-volume fuzz/corpus-volume
 
 clean:
 	rm -rf $(BUILD_DIR) build-asan build-fuzz out

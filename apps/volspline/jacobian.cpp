@@ -102,7 +102,7 @@ void add_jacobian_command(CLI::App& app) {
     });
     reporter().set_label("");
     if (*json) std::cout << json_text(out) << "\n";
-    if (*fail && any_invalid) throw ExitCode(3);
+    if (*fail && any_invalid) throw ExitCode{3};
   });
 }
 

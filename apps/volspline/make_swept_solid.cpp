@@ -73,7 +73,11 @@ SweptSolidFrame parse_frame(const std::string& text) {
 }
 
 void make_swept_solid_file(const SweptSolidRequest& r) {
-  auto [patches, locations] = generator_patches(r.generator);
+  // Named, not a structured binding: clang 14 (the sanitizer build's compiler) does not let the
+  // lambda below capture bindings.
+  auto generator = generator_patches(r.generator);
+  auto& patches = generator.first;
+  const auto& locations = generator.second;
   const std::vector<BSplineCurve> path_curves = curves_of(r.path);
   if (path_curves.empty()) throw InvalidInput(r.path + " has no curve object (bspline_curve or bezier_curve)", "--path");
   const SweptSolidFrame frame = parse_frame(r.frame);

@@ -218,7 +218,10 @@ std::vector<MethodError> compare_volume_fits(const VolumeData& data, const DmsSp
     std::mt19937_64 random(20261202);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     for (std::size_t tries = 0; truth_points.size() < options.truth_points && tries < 20 * options.truth_points; ++tries) {
-      const Eigen::Vector3d x = box.lo + (box.hi - box.lo).cwiseProduct(Eigen::Vector3d(unit(random), unit(random), unit(random)));
+      // Drawn one by one (argument order is unspecified; this is g++'s), so that every compiler
+      // samples the same points.
+      const double rz = unit(random), ry = unit(random), rx = unit(random);
+      const Eigen::Vector3d x = box.lo + (box.hi - box.lo).cwiseProduct(Eigen::Vector3d(rx, ry, rz));
       if (evaluator.evaluate(x).inside) truth_points.push_back(x);
     }
   }

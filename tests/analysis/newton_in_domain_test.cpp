@@ -42,7 +42,10 @@ TEST(NewtonInDomain, OutsideAFoldItEndsAtTheClosestPointWithItsNormal) {
   std::uniform_real_distribution<double> unit(0, 1);
   for (const double distance : {1e-3, 1e-6}) {
     for (int i = 0; i < 10; ++i) {
-      Eigen::Vector3d n = Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
+      // Drawn one by one: the order in which a constructor's arguments are evaluated is
+      // unspecified (g++ and clang differ). This order is g++'s, which chose the cases below.
+      const double nz = unit(rng) - 0.5, ny = unit(rng) - 0.5, nx = unit(rng) - 0.5;
+      Eigen::Vector3d n(nx, ny, nz);
       n = (n - n.dot(axis) * axis).normalized();
       const double t = 0.2 + 0.6 * unit(rng);
       const Eigen::Vector3d x = t * offset + (0.6 + distance) * n;
