@@ -1131,19 +1131,24 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       // sheets meet in the plane through the apex across the crease, if it is in the region.
       std::optional<SheetVertex> on_crease;
       if (rank == 2 && snap_creases) {
-        std::size_t first = 0, second = 0;
-        double smallest = 2;
+        // The pair of crossings whose normals differ most, first among pairs on two sheets, then
+        // among pairs on one sheet (two branches of a sheet that crosses itself, Fig. 5's ridge:
+        // docs/envelopes.md); the second is tried where the first gives no crease point.
+        std::array<std::size_t, 2> first{0, 0}, second{0, 0};
+        std::array<double, 2> smallest{2, 2};
         for (std::size_t i = 0; i < corners.size(); ++i)
           for (std::size_t j = 0; j < i; ++j) {
             const ContourCrossing &xi = crossings[static_cast<std::size_t>(corners[i])], &xj = crossings[static_cast<std::size_t>(corners[j])];
             if (!xi.on_sheet || !xj.on_sheet) continue;
+            const std::size_t kind = sheet_of_triangle[xi.triangle] == sheet_of_triangle[xj.triangle] ? 1 : 0;
             const double c = std::abs(xi.normal.dot(xj.normal));
-            if (c < smallest) smallest = c, first = i, second = j;
+            if (c < smallest[kind]) smallest[kind] = c, first[kind] = i, second[kind] = j;
           }
-        if (smallest < crease_cos) {
+        for (std::size_t kind = 0; kind < 2 && !on_crease; ++kind) {
+          if (!(smallest[kind] < crease_cos)) continue;
           SheetVertex v;
-          v.on[0] = sheet_point_of(crossings[static_cast<std::size_t>(corners[first])]);
-          v.on[1] = sheet_point_of(crossings[static_cast<std::size_t>(corners[second])]);
+          v.on[0] = sheet_point_of(crossings[static_cast<std::size_t>(corners[first[kind]])]);
+          v.on[1] = sheet_point_of(crossings[static_cast<std::size_t>(corners[second[kind]])]);
           const Eigen::Vector3d direction = v.on[0].normal.cross(v.on[1].normal);
           const std::optional<Eigen::Vector3d> x = sheet_crease_point(sheet_crossing_from, v.on[0], v.on[1], apex, direction, grid.h);
           // A crease only where the sheets meet at the crease angle or more there: two sheets
@@ -1422,7 +1427,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       refinement.shortest_edge = 1e-3 * grid.h;
       refinement.inside = checked_inside;
       refinement.check_distance = 0.25 * reach;
-      if (options.crease_angle_degrees > 0) refinement.branch_angle_degrees = options.crease_angle_degrees;
+      if (options.crease_angle_degrees > 0) refinement.branch_angle_degrees = std::min(options.crease_angle_degrees, 90.0);
       const std::size_t before = sheet_vertices.size();
       const SheetRefinementStats r = refine_to_sheets(result, sheet_vertices, sheet_crossing_from, refinement, &face_origin);
       for (std::size_t v = before; v < sheet_vertices.size(); ++v) {

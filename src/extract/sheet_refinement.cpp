@@ -127,14 +127,21 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
   // the branch angle: a sheet that crosses itself (a face sweep's fold folding over, Fig. 5's
   // ridge) makes a crease between two of its own branches, whose parameters are far apart.
   const double branch_cos = options.branch_angle_degrees > 0 ? std::cos(options.branch_angle_degrees * 3.14159265358979323846 / 180) : -1.0;
+  // (A point without a normal is on every branch of its sheet.)
   const auto same_branch = [&](const SheetPoint& a, const SheetPoint& b) {
-    return a.sheet >= 0 && a.sheet == b.sheet && std::abs(a.normal.normalized().dot(b.normal.normalized())) >= branch_cos;
+    return a.sheet >= 0 && a.sheet == b.sheet &&
+           (a.normal.isZero() || b.normal.isZero() || std::abs(a.normal.normalized().dot(b.normal.normalized())) >= branch_cos);
+  };
+  // Two crease points on the same two sheets; where the two are one sheet's two branches, the
+  // normals say which branch is which.
+  const auto same_crease = [&](const SheetPoint& a0, const SheetPoint& a1, const SheetPoint& b0, const SheetPoint& b1) {
+    return a0.sheet == b0.sheet && a1.sheet == b1.sheet && (a0.sheet != a1.sheet || (same_branch(a0, b0) && same_branch(a1, b1)));
   };
   auto edge_kind = [&](const SheetVertex& vp, const SheetVertex& vq) {
     Shared shared;
     const auto crease = [](const SheetVertex& v) { return v.on[0].sheet >= 0 && v.on[1].sheet >= 0; };
-    if (crease(vp) && crease(vq) && ((same_branch(vp.on[0], vq.on[0]) && same_branch(vp.on[1], vq.on[1])) ||
-                                     (same_branch(vp.on[0], vq.on[1]) && same_branch(vp.on[1], vq.on[0])))) {
+    if (crease(vp) && crease(vq) &&
+        (same_crease(vp.on[0], vp.on[1], vq.on[0], vq.on[1]) || same_crease(vp.on[0], vp.on[1], vq.on[1], vq.on[0]))) {
       shared.kind = EdgeKind::Crease;
       return shared;
     }

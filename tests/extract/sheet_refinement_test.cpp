@@ -161,7 +161,7 @@ TEST(SheetRefinement, TwoBranchesOfOneSheetAreToldApartByTheirNormals) {
   // A coarse mesh of the union's boundary: 16 vertices on the circle where the spheres cross
   // (x = 0, radius 0.6; the branches' normals there 74 degrees apart), on each sphere rings
   // every 13 degrees of latitude from there to its far pole (x = -1.8 or 1.8), so that
-  // neighbours on one branch have normals at most 22.5 degrees apart.
+  // neighbours on one branch have normals at most about 26 degrees apart (across a diagonal).
   const auto make = [](std::vector<SheetVertex>& vertices, bool crease_on_both) {
     TriangleMesh mesh;
     vertices.clear();

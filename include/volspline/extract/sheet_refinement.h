@@ -69,7 +69,9 @@ struct SheetRefinementOptions {
   /// branches of it (the sheet crosses itself, making a crease of the boundary), and an edge
   /// between them is refined as across a crease, not along the sheet. Only for meshes whose
   /// edges are short against the sheets' curvature (a contour, whose cells call normals that far
-  /// apart a crease); 0 (default): a sheet is one branch.
+  /// apart a crease); 0 (default): a sheet is one branch. Either way, of the sheets two vertices
+  /// share, the pair of points whose normals agree best is refined along; crease edges are
+  /// matched by sheet numbers, normals telling only one sheet's two branches apart.
   double branch_angle_degrees = 0;
   /// With a membership test: edges between two sheets whose normals are farther apart (up to
   /// 80°: a seam on a curved surface, or a crease) are split too where the split point is on
