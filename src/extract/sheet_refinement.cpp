@@ -189,47 +189,89 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     if (np.isZero() || nq.isZero()) return length;
     return length * std::acos(std::clamp(std::abs(np.normalized().dot(nq.normalized())), 0.0, 1.0)) / 8;
   };
+  // A circular arc of chord L whose end normals differ by the angle θ stands L θ / 8 above its
+  // chord. Edges along a sheet (or a seam) estimated at a quarter of the tolerance or less are
+  // not solved for (most of a smooth boundary); the estimate misses S-shaped edges, whose
+  // deviation is of third order in L.
+  auto within_estimate = [&](int p, int q, const Shared& shared) {
+    if (shared.kind != EdgeKind::Sheet && shared.kind != EdgeKind::Seam) return false;
+    Eigen::Vector3d normal = shared.p.normal + (shared.p.normal.dot(shared.q.normal) < 0 ? -shared.q.normal : shared.q.normal);
+    if (!(normal.norm() > 1e-12)) normal = shared.p.normal;
+    if (!(normal.norm() > 1e-12)) return false;
+    const double length = (mesh.positions[static_cast<std::size_t>(p)] - mesh.positions[static_cast<std::size_t>(q)]).norm();
+    const double angle = std::acos(std::clamp(std::abs(shared.p.normal.normalized().dot(shared.q.normal.normalized())), 0.0, 1.0));
+    return length * angle / 8 <= 0.25 * options.tolerance;
+  };
   // Faces made in the last round (all at first): every other edge is settled, so only theirs
   // are candidates.
   std::vector<char> fresh(mesh.num_triangles(), 1);
+  // Buffers of the rounds, kept (with their memory) from round to round.
+  std::vector<EdgeSplit> candidates;
+  std::vector<std::uint64_t> keys;
+  std::vector<char> verdicts;
+  std::vector<char> at_split;
+  std::unordered_map<std::uint64_t, std::size_t> wanted;
+  std::vector<Eigen::Vector3d> added;
+  std::unordered_map<std::uint64_t, int> split_at;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<int> parts;
+  std::vector<std::size_t> parent_face, new_origin;
+  std::vector<char> split_face;
+  std::unordered_set<std::uint64_t> refused;
   for (int round = 0;; ++round) {
-    std::vector<EdgeSplit> candidates;
+    candidates.clear();
     {
-      std::unordered_set<std::uint64_t> seen;
+      // The fresh faces' edges not settled yet, in key order, each classified (in parallel:
+      // on the first round that is every edge of the mesh) and then counted in that order.
+      keys.clear();
       for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
         if (!fresh[f]) continue;
         const auto& t = mesh.triangles[f];
-        for (int j = 0; j < 3; ++j) {
-          const int p = t[static_cast<std::size_t>(j)], q = t[static_cast<std::size_t>((j + 1) % 3)];
-          const std::uint64_t key = refinement_edge_key(p, q);
-          if (settled.count(key) || !seen.insert(key).second) continue;
-          const SheetVertex &vp = vertices[static_cast<std::size_t>(std::min(p, q))], &vq = vertices[static_cast<std::size_t>(std::max(p, q))];
+        for (int j = 0; j < 3; ++j) keys.push_back(refinement_edge_key(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]));
+      }
+      std::sort(keys.begin(), keys.end());
+      keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+      keys.erase(std::remove_if(keys.begin(), keys.end(), [&](std::uint64_t key) { return settled.count(key) > 0; }), keys.end());
+      enum : char { kFrozen, kUnshared, kUnsharedUnresolved, kShort, kWithinEstimate, kCandidate };
+      verdicts.resize(keys.size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, keys.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const auto p = static_cast<int>(keys[i] >> 32), q = static_cast<int>(keys[i] & 0xffffffffu);
+          const SheetVertex &vp = vertices[static_cast<std::size_t>(p)], &vq = vertices[static_cast<std::size_t>(q)];
+          char& verdict = verdicts[i];
           if (vp.frozen || vq.frozen) {
-            settled.insert(key);
-            stats.unverified_edges.push_back({std::min(p, q), std::max(p, q)});
+            verdict = kFrozen;
             continue;
           }
-          if (edge_kind(vp, vq).kind == EdgeKind::None) {
-            stats.unverified_edges.push_back({std::min(p, q), std::max(p, q)});
+          const Shared shared = edge_kind(vp, vq);
+          if (shared.kind == EdgeKind::None) {
             // Across a crease that no crease point resolves (a chamfer): counted where a chord
             // of that length between those normals may stand off the boundary by more than the
             // tolerance.
-            if (vp.on[0].sheet >= 0 && vq.on[0].sheet >= 0 && arc_deviation(p, q, vp.on[0].normal, vq.on[0].normal) > options.tolerance)
-              ++stats.unresolved_edges;
-            settled.insert(key);
-            continue;
+            verdict = vp.on[0].sheet >= 0 && vq.on[0].sheet >= 0 && arc_deviation(p, q, vp.on[0].normal, vq.on[0].normal) > options.tolerance
+                          ? kUnsharedUnresolved
+                          : kUnshared;
+          } else if ((mesh.positions[static_cast<std::size_t>(p)] - mesh.positions[static_cast<std::size_t>(q)]).norm() <= options.shortest_edge) {
+            verdict = kShort;
+          } else {
+            verdict = within_estimate(p, q, shared) ? kWithinEstimate : kCandidate;
           }
-          if ((mesh.positions[static_cast<std::size_t>(p)] - mesh.positions[static_cast<std::size_t>(q)]).norm() <= options.shortest_edge) {
-            settled.insert(key);
-            stats.unverified_edges.push_back({std::min(p, q), std::max(p, q)});
-            continue;
-          }
+        }
+      });
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        const std::uint64_t key = keys[i];
+        const char verdict = verdicts[i];
+        if (verdict == kCandidate) {
           EdgeSplit e;
           e.key = key;
           candidates.push_back(e);
+          continue;
         }
+        settled.insert(key);
+        if (verdict == kWithinEstimate) continue;
+        stats.unverified_edges.push_back({static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)});
+        if (verdict == kUnsharedUnresolved) ++stats.unresolved_edges;
       }
-      std::sort(candidates.begin(), candidates.end(), [](const EdgeSplit& a, const EdgeSplit& b) { return a.key < b.key; });
     }
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -284,16 +326,6 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
         if (!(normal.norm() > 1e-12)) normal = sp.normal;
         if (!(normal.norm() > 1e-12)) continue;
         normal.normalize();
-        // A circular arc of chord L whose end normals differ by the angle θ stands L θ / 8 above
-        // its chord. Edges estimated at a quarter of the tolerance or less are not solved for
-        // (most of a smooth boundary); the estimate misses S-shaped edges, whose deviation is
-        // of third order in L.
-        const double angle = std::acos(std::clamp(std::abs(sp.normal.normalized().dot(sq.normal.normalized())), 0.0, 1.0));
-        if (length * angle / 8 <= 0.25 * options.tolerance) {
-          e.found = true;
-          e.distance = 0;
-          continue;
-        }
         const Eigen::Vector3d a = middle - 0.5 * length * normal, b = middle + 0.5 * length * normal;
         // One sheet: Newton from the mean of the ends' parameters. A seam between two sheets
         // that meet smoothly (patches of one surface): each end's sheet from that end.
@@ -333,9 +365,9 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     // A split must not turn a face over: each face next to the edge, split at the new point
     // alone, gives two faces facing its way (else the split is refused, the edge unresolved).
     // (Faces with two corners at the ends of wanted splits are looked at only.)
-    std::vector<char> at_split(mesh.num_vertices(), 0);
+    at_split.assign(mesh.num_vertices(), 0);
     {
-      std::unordered_map<std::uint64_t, std::size_t> wanted;
+      wanted.clear();
       for (std::size_t c = 0; c < candidates.size(); ++c) {
         const EdgeSplit& e = candidates[c];
         if (!e.found || e.distance <= options.tolerance) continue;
@@ -361,15 +393,11 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     // Faces split by their split edges (`at`: edge key -> new vertex), orientation kept; `pos`
     // gives the positions, also of vertices not added yet.
     const auto base = static_cast<int>(mesh.num_vertices());
-    std::vector<Eigen::Vector3d> added;
+    added.clear();
     auto pos = [&](int v) -> const Eigen::Vector3d& {
       return v < base ? mesh.positions[static_cast<std::size_t>(v)] : added[static_cast<std::size_t>(v - base)];
     };
-    std::unordered_map<std::uint64_t, int> split_at;
-    std::vector<std::array<int, 3>> triangles;
-    std::vector<int> parts;
-    std::vector<std::size_t> parent_face;
-    std::vector<char> split_face;
+    split_at.clear();
     auto split_faces = [&] {
       triangles.clear();
       parts.clear();
@@ -441,7 +469,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
         }
       if (split_at.empty()) break;
       split_faces();
-      std::unordered_set<std::uint64_t> refused;
+      refused.clear();
       for (std::size_t c = 0; c < triangles.size(); ++c) {
         if (!split_face[c]) continue;
         const std::array<int, 3>& parent = mesh.triangles[parent_face[c]];
@@ -495,12 +523,12 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
       ++stats.split_edges;
     }
     if (!faces_checked) split_faces();
-    std::vector<std::size_t> new_origin(parent_face.size());
+    new_origin.resize(parent_face.size());
     for (std::size_t c = 0; c < parent_face.size(); ++c) new_origin[c] = origin[parent_face[c]];
-    mesh.triangles = std::move(triangles);
-    mesh.parts = std::move(parts);
-    origin = std::move(new_origin);
-    fresh = std::move(split_face);
+    mesh.triangles.swap(triangles);
+    mesh.parts.swap(parts);
+    origin.swap(new_origin);
+    fresh.swap(split_face);
   }
   return finish();
 }

@@ -303,7 +303,9 @@ void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& s
     std::vector<std::vector<std::size_t>> rt;
     for (const auto& t : mesh.triangles)
       rt.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
-    PMP::orient_polygon_soup(check_points, rt);
+    // A closed, oriented 2-manifold (what the trimming makes) is a polygon mesh as it is; only
+    // other soups are oriented first (which splits non-manifold vertices).
+    if (!stats.oriented || nonmanifold_vertices(mesh) > 0) PMP::orient_polygon_soup(check_points, rt);
     Mesh check;
     PMP::polygon_soup_to_polygon_mesh(check_points, rt, check);
     std::vector<std::pair<FaceIndex, FaceIndex>> pairs;

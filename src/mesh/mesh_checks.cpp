@@ -1,9 +1,11 @@
 #include "volspline/mesh/mesh_checks.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -114,6 +116,59 @@ EdgeStatistics edge_statistics(const TriangleMesh& mesh) {
     begin = end;
   }
   return stats;
+}
+
+std::size_t nonmanifold_vertices(const TriangleMesh& mesh) {
+  validate_mesh(mesh);
+  // Per vertex, the links of its triangles (the opposite edge of each); one fan exactly when
+  // they connect all its neighbours (union-find over the neighbours).
+  const std::size_t n = mesh.num_vertices();
+  std::vector<std::size_t> start(n + 1, 0);
+  std::vector<char> repeated(n, 0);
+  for (const auto& t : mesh.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
+      for (const int v : t) repeated[static_cast<std::size_t>(v)] = 1;
+      continue;
+    }
+    for (const int v : t) ++start[static_cast<std::size_t>(v) + 1];
+  }
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::array<int, 2>> link(start[n]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (const auto& t : mesh.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
+    for (int j = 0; j < 3; ++j) link[fill[static_cast<std::size_t>(t[j])]++] = {t[(j + 1) % 3], t[(j + 2) % 3]};
+  }
+  std::size_t count = 0;
+  std::vector<int> neighbours, parent;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (repeated[v]) {
+      ++count;
+      continue;
+    }
+    if (start[v] == start[v + 1]) continue;
+    neighbours.clear();
+    for (std::size_t i = start[v]; i < start[v + 1]; ++i) neighbours.insert(neighbours.end(), link[i].begin(), link[i].end());
+    std::sort(neighbours.begin(), neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+    parent.resize(neighbours.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    const auto local = [&](int w) { return static_cast<int>(std::lower_bound(neighbours.begin(), neighbours.end(), w) - neighbours.begin()); };
+    const auto find = [&](int a) {
+      while (parent[static_cast<std::size_t>(a)] != a) a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+      return a;
+    };
+    std::size_t components = neighbours.size();
+    for (std::size_t i = start[v]; i < start[v + 1]; ++i) {
+      const int a = find(local(link[i][0])), b = find(local(link[i][1]));
+      if (a != b) {
+        parent[static_cast<std::size_t>(a)] = b;
+        --components;
+      }
+    }
+    if (components != 1) ++count;
+  }
+  return count;
 }
 
 std::vector<int> coincident_vertices(const TriangleMesh& mesh, double tolerance) {

@@ -73,6 +73,37 @@ TEST(EdgeStatistics, ThreeTrianglesOnOneEdgeAreNonmanifold) {
   EXPECT_FALSE(s.closed());
 }
 
+TEST(NonmanifoldVertices, ClosedCubeAndAnOpenDiskHaveNone) {
+  EXPECT_EQ(nonmanifold_vertices(test_support::unit_cube()), 0u);
+  TriangleMesh cube = test_support::unit_cube();
+  cube.triangles.pop_back();
+  cube.parts.pop_back();
+  EXPECT_EQ(nonmanifold_vertices(cube), 0u);  // the hole's corners are on half-disks
+}
+
+TEST(NonmanifoldVertices, TwoCubesTouchingAtACornerMakeThatCornerNonmanifold) {
+  // Closed and oriented edge by edge, yet not a 2-manifold: the shared corner's triangles form
+  // two fans. Welding the copies' coincident corner gives exactly one such vertex.
+  TriangleMesh two = test_support::unit_cube();
+  const TriangleMesh other = translated(test_support::unit_cube(), {1, 1, 1});
+  const auto base = static_cast<int>(two.num_vertices());
+  for (std::size_t v = 0; v < other.num_vertices(); ++v) two.add_vertex(other.positions[v], kNoParameter);
+  for (std::size_t f = 0; f < other.num_triangles(); ++f)
+    two.add_triangle(other.triangles[f][0] + base, other.triangles[f][1] + base, other.triangles[f][2] + base, 0);
+  EXPECT_EQ(nonmanifold_vertices(two), 0u);
+  weld_by_position(two, 0);
+  EXPECT_TRUE(edge_statistics(two).closed_and_oriented());
+  EXPECT_EQ(nonmanifold_vertices(two), 1u);
+}
+
+TEST(NonmanifoldVertices, ATriangleWithARepeatedCornerCountsItsCorners) {
+  TriangleMesh mesh;
+  mesh.add_vertex({0, 0, 0}, kNoParameter);
+  mesh.add_vertex({1, 0, 0}, kNoParameter);
+  mesh.add_triangle(0, 1, 1, 0);
+  EXPECT_EQ(nonmanifold_vertices(mesh), 2u);
+}
+
 TEST(EdgeStatistics, EmptyMeshIsNotClosed) {
   const EdgeStatistics s = edge_statistics(TriangleMesh{});
   EXPECT_EQ(s.edges, 0u);

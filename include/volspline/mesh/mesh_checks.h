@@ -42,6 +42,13 @@ struct EdgeStatistics {
 /// \throw InvalidInput if the mesh is malformed (validate_mesh).
 EdgeStatistics edge_statistics(const TriangleMesh& mesh);
 
+/// Vertices whose triangles do not form one fan (one disk or half-disk around the vertex): two
+/// cones touching at their apexes, or a triangle with the vertex twice. A closed, consistently
+/// oriented mesh without such vertices is a 2-manifold surface, which CGAL's polygon mesh
+/// structures take as it is (no orienting or vertex splitting first).
+/// \throw InvalidInput if the mesh is malformed (validate_mesh).
+std::size_t nonmanifold_vertices(const TriangleMesh& mesh);
+
 /// For each vertex, the earliest vertex whose position lies within `tolerance` of it among those
 /// kept so far (itself if none): the merge map weld_by_position applies, for callers that must
 /// keep the vertices apart but need to know which coincide (seams of periodic
