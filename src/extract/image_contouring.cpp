@@ -938,8 +938,13 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   double checks_total = 0;
   // Refines the coarse cells holding `beyond_points` and their neighbours; false if all were
   // refined already.
+  // The cells to split are decided against the cells split before this call, not against the
+  // neighbours this call adds: `beyond_points` arrive in the order the parallel verification
+  // found them, and skipping a point whose cell an earlier point's neighbourhood had just split
+  // made the complex (and Fig. 5's output) depend on thread timing.
   auto refine_cells_at = [&] {
     const std::size_t refined_before = refined.size();
+    std::vector<std::array<std::int64_t, 3>> centres;
     for (const Eigen::Vector3d& p : beyond_points) {
       std::array<std::int64_t, 3> i{};
       for (std::size_t d = 0; d < 3; ++d)
@@ -948,6 +953,9 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       if (refined.count(grid.key(std::clamp<std::int64_t>(i[0], 0, grid.n[0] - 1), std::clamp<std::int64_t>(i[1], 0, grid.n[1] - 1),
                                  std::clamp<std::int64_t>(i[2], 0, grid.n[2] - 1))))
         continue;
+      centres.push_back(i);
+    }
+    for (const std::array<std::int64_t, 3>& i : centres)
       for (std::int64_t dk = -1; dk <= 1; ++dk)
         for (std::int64_t dj = -1; dj <= 1; ++dj)
           for (std::int64_t di = -1; di <= 1; ++di) {
@@ -956,7 +964,6 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             for (std::size_t d = 0; d < 3; ++d) in_grid = in_grid && j[d] >= 0 && j[d] <= grid.n[d] - 1 - ratio;
             if (in_grid) refined.insert(grid.key(j[0], j[1], j[2]));
           }
-    }
     return refined.size() > refined_before;
   };
   for (int adaptation = 0;; ++adaptation) {
