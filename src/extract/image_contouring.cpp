@@ -20,7 +20,6 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
-#include <boost/iterator/function_output_iterator.hpp>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -44,6 +43,42 @@ using ContourTriangle = ContourKernel::Triangle_3;
 using ContourPrimitive = CGAL::AABB_triangle_primitive<ContourKernel, std::vector<ContourTriangle>::const_iterator>;
 using ContourTree = CGAL::AABB_tree<CGAL::AABB_traits<ContourKernel, ContourPrimitive>>;
 using ContourClock = std::chrono::steady_clock;
+
+// The tree's triangles that meet `box`, each passed to `visit` until it returns false. CGAL's own
+// box queries test every node's box against the query through the Epick kernel's filtered
+// Bbox_3–Bbox_3 predicate (interval arithmetic, then an exact fallback), which was a tenth of
+// Fig. 4's whole run; two boxes of doubles overlap or not by comparisons alone
+// (CGAL::do_overlap), so the nodes use that and only the triangles the filtered predicate. The
+// answers are the same.
+template <class Visit>
+class TrianglesMeetingBox {
+ public:
+  explicit TrianglesMeetingBox(Visit& visit) : visit_(visit) {}
+  bool go_further() const { return going_; }
+  void intersection(const CGAL::Bbox_3& box, const ContourPrimitive& primitive) {
+    if (CGAL::do_intersect(primitive.datum(), box)) going_ = visit_(primitive.id());
+  }
+  template <class Node>
+  bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
+    return CGAL::do_overlap(box, node.bbox());
+  }
+
+ private:
+  Visit& visit_;
+  bool going_ = true;
+};
+
+template <class Visit>
+void visit_triangles_meeting(const ContourTree& tree, const CGAL::Bbox_3& box, Visit visit) {
+  TrianglesMeetingBox<Visit> traversal(visit);
+  tree.traversal(box, traversal);
+}
+
+bool any_triangle_meets(const ContourTree& tree, const CGAL::Bbox_3& box) {
+  bool found = false;
+  visit_triangles_meeting(tree, box, [&](ContourTree::Primitive_id) { return !(found = true); });
+  return found;
+}
 
 // Grid points o + h (i, j, k), 0 <= i < n[0] ..., one 64-bit key each; a cell is keyed by its
 // lowest corner.
@@ -313,7 +348,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             const double m = reach + 1e-9 * grid.h;
             const CGAL::Bbox_3 box(std::min(x.x(), y.x()) - m, std::min(x.y(), y.y()) - m, std::min(x.z(), y.z()) - m,
                                    std::max(x.x(), y.x()) + m, std::max(x.y(), y.y()) + m, std::max(x.z(), y.z()) + m);
-            if (!tree.do_intersect(box)) l = kind;
+            if (!any_triangle_meets(tree, box)) l = kind;
           }
       });
       std::vector<std::size_t> parent(fresh.size());
@@ -563,15 +598,16 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           const Eigen::Vector3d middle = 0.5 * (a + b);
           const ContourPoint centre(middle.x(), middle.y(), middle.z());
           const double within = r + 0.5 * std::sqrt(ab.squaredNorm());
-          tree.all_intersected_primitives(box, boost::make_function_output_iterator([&](ContourTree::Primitive_id id) {
+          visit_triangles_meeting(tree, box, [&](ContourTree::Primitive_id id) {
             const std::size_t t = proper_source[static_cast<std::size_t>(id - proper_triangles.cbegin())];
             const int sheet = sheet_of_triangle[t];
-            if (crossing_sheets.count(sheet)) return;
+            if (crossing_sheets.count(sheet)) return true;
             const double d = CGAL::squared_distance(centre, triangles[t]);
-            if (d > within * within) return;
+            if (d > within * within) return true;
             const auto [it, fresh] = nearest_of_sheet.try_emplace(sheet, d, t);
             if (!fresh && d < it->second.first) it->second = {d, t};
-          }));
+            return true;
+          });
           for (const auto& [sheet, near] : nearest_of_sheet) {
             const ContourTriangle& tri = triangles[near.second];
             const Eigen::Vector3d centroid((tri[0].x() + tri[1].x() + tri[2].x()) / 3, (tri[0].y() + tri[1].y() + tri[2].y()) / 3,
@@ -648,10 +684,11 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         const Eigen::Vector3d p = a + 0.5 * (low + high) * ab;
         const double r = reach + (high - low) * std::sqrt(ab.squaredNorm());
         std::vector<std::size_t> near;
-        tree.all_intersected_primitives(CGAL::Bbox_3(p.x() - r, p.y() - r, p.z() - r, p.x() + r, p.y() + r, p.z() + r),
-                                        boost::make_function_output_iterator([&](ContourTree::Primitive_id id) {
-                                          near.push_back(proper_source[static_cast<std::size_t>(id - proper_triangles.cbegin())]);
-                                        }));
+        visit_triangles_meeting(tree, CGAL::Bbox_3(p.x() - r, p.y() - r, p.z() - r, p.x() + r, p.y() + r, p.z() + r),
+                                [&](ContourTree::Primitive_id id) {
+                                  near.push_back(proper_source[static_cast<std::size_t>(id - proper_triangles.cbegin())]);
+                                  return true;
+                                });
         const ContourPoint cp(p.x(), p.y(), p.z());
         std::vector<std::pair<double, std::size_t>> by_distance;
         for (std::size_t t : near) by_distance.emplace_back(CGAL::squared_distance(cp, triangles[t]), t);
