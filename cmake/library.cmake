@@ -83,7 +83,7 @@ set(VOLSPLINE_COMPONENT_RULES
   "cgal=simplex/"
   "cgal=extract/simplex_"
   "cgal=extract/(superset_trimming|image_contouring|image_membership|sheet_refinement|swept_envelope|trimmed_solid_boundary)\\.cpp$"
-  "cgal=mesh/(tetrahedral_mesh|tetrahedron_locator|longest_edge_bisection|delaunay_tetrahedralization|point_cloud_domain|surface_tetrahedralization|interface_split|material_interface)\\.cpp$"
+  "cgal=mesh/(tetrahedral_mesh|tetrahedron_locator|longest_edge_bisection|delaunay_tetrahedralization|point_cloud_domain|surface_tetrahedralization|interface_split|material_interface|self_intersections)\\.cpp$"
   "cgal=render/xray_image\\.cpp$"
   "core=io/(atomic_file|volume_data|volume_data_inr|volume_data_ply)\\.cpp$"
   "models=(io|pipeline|deform|web)/"

@@ -973,6 +973,9 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   const int max_adaptations = ratio > 1 ? 2 : 0;
   std::vector<Eigen::Vector3d> beyond_points;
   double checks_total = 0;
+  // Repair rounds and adaptations change a few percent of the faces: each self-intersection
+  // test looks only at the pairs that involve a face the last tested mesh did not have.
+  SelfIntersectionRecord self_intersection_record;
   // Refines the coarse cells holding `beyond_points` and their neighbours; false if all were
   // refined already.
   // The cells to split are decided against the cells split before this call, not against the
@@ -1559,7 +1562,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       break;
     }
     std::vector<std::pair<std::size_t, std::size_t>> intersecting;
-    measure_trimmed_boundary(result, stats, &intersecting);
+    measure_trimmed_boundary(result, stats, &intersecting, &self_intersection_record);
     if (intersecting.empty() || round + 1 >= max_rounds) break;
     // Undo the flips that made a face of an intersecting pair; where neither face is flipped,
     // drop the fans of the cells of the fan faces among them.

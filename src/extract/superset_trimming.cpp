@@ -19,13 +19,9 @@
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Projection_traits_xy_3.h>
 #include <CGAL/Projection_traits_xz_3.h>
 #include <CGAL/Projection_traits_yz_3.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 #include <tbb/parallel_for.h>
@@ -40,9 +36,6 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
-using FaceIndex = Mesh::Face_index;
-namespace PMP = CGAL::Polygon_mesh_processing;
 // Exact constructions: the points where three sheets meet must come out identical from each
 // pair's intersection, or the cut pieces would not share their corners.
 using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
@@ -255,7 +248,7 @@ enum class Verdict { KeepAsIs, Flip, Inside, Outside, Undecided };
 }  // namespace
 
 void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& stats,
-                              std::vector<std::pair<std::size_t, std::size_t>>* intersecting_faces) {
+                              std::vector<std::pair<std::size_t, std::size_t>>* intersecting_faces, SelfIntersectionRecord* record) {
   validate_mesh(mesh);
   stats.result_triangles = static_cast<std::int64_t>(mesh.num_triangles());
   const EdgeStatistics edges = edge_statistics(mesh);
@@ -296,26 +289,10 @@ void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& s
     stats.components = static_cast<int>(std::count(root.begin(), root.end(), true));
   }
   // Self-intersections of the result as written (doubles), by CGAL's exact predicates.
-  if (mesh.num_triangles() > 0) {
-    std::vector<Point> check_points;
-    check_points.reserve(mesh.num_vertices());
-    for (const auto& p : mesh.positions) check_points.emplace_back(p.x(), p.y(), p.z());
-    std::vector<std::vector<std::size_t>> rt;
-    for (const auto& t : mesh.triangles)
-      rt.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
-    // A closed, oriented 2-manifold (what the trimming makes) is a polygon mesh as it is; only
-    // other soups are oriented first (which splits non-manifold vertices).
-    if (!stats.oriented || nonmanifold_vertices(mesh) > 0) PMP::orient_polygon_soup(check_points, rt);
-    Mesh check;
-    PMP::polygon_soup_to_polygon_mesh(check_points, rt, check);
-    std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
-    PMP::self_intersections<CGAL::Parallel_if_available_tag>(check.faces(), check, std::back_inserter(pairs));
-    stats.self_intersecting_pairs = static_cast<std::int64_t>(pairs.size());
-    stats.self_intersection_free = pairs.empty();
-    // The soup's polygons became the mesh's faces in order (orienting reverses, never reorders).
-    if (intersecting_faces)
-      for (const auto& [f, g] : pairs) intersecting_faces->emplace_back(static_cast<std::size_t>(f), static_cast<std::size_t>(g));
-  }
+  const auto pairs = self_intersecting_triangles(mesh, record);
+  stats.self_intersecting_pairs = static_cast<std::int64_t>(pairs.size());
+  stats.self_intersection_free = pairs.empty();
+  if (intersecting_faces) intersecting_faces->insert(intersecting_faces->end(), pairs.begin(), pairs.end());
 }
 
 TrimmedBoundary trim_superset(const TriangleMesh& superset, const std::vector<double>& extra,

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "volspline/core/progress.h"
+#include "volspline/mesh/self_intersections.h"
 #include "volspline/mesh/triangle_mesh.h"
 
 namespace volspline {
@@ -105,9 +106,12 @@ struct TrimmedBoundary {
 /// Fills the result half of `stats` for `mesh`: triangles, closed, oriented, boundary and
 /// non-manifold edges (and where it is open), components, volume, self-intersections (CGAL's
 /// exact predicates on the doubles), and, if asked, the self-intersecting pairs of triangle
-/// indices. \throw InvalidInput for a malformed mesh.
+/// indices. With `record`, the self-intersection test looks only where the mesh differs from
+/// the one the record was last filled from (mesh/self_intersections.h), with the same answer.
+/// \throw InvalidInput for a malformed mesh.
 void measure_trimmed_boundary(const TriangleMesh& mesh, SupersetTrimmingStats& stats,
-                              std::vector<std::pair<std::size_t, std::size_t>>* intersecting_faces = nullptr);
+                              std::vector<std::pair<std::size_t, std::size_t>>* intersecting_faces = nullptr,
+                              SelfIntersectionRecord* record = nullptr);
 
 /// Trims `superset` (any orientation, non-manifold edges allowed) to the boundary of S.
 /// `extra` is an optional per-vertex parameter (empty or one per vertex). The membership test
