@@ -1085,6 +1085,41 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   std::set<int> unrefined_vertices;
   const std::int64_t max_rounds = 4;
   bool adapted = false;
+  // A crease fan worked out for a cell or one of its tetrahedra: the fan's apex (on the crease
+  // where snapped), its border loop, and the crossing nearest the apex, whose tags it takes.
+  struct FanPlan {
+    Eigen::Vector3d apex;
+    std::optional<SheetVertex> on_crease;
+    std::vector<int> loop;
+    int near_vertex = 0;
+  };
+  // What a cell's faces will be: its disk's fan, each tetrahedron's own fan or plain faces, or
+  // its plain faces. Worked out for all cells in parallel (the fans' Newton and membership tests
+  // are most of the time), then emitted in cell order, so that the output does not depend on
+  // the threads. The plans depend on the cell's crossings and on whether the cell may have
+  // fans, so a repair round works out again only the cells whose fans it took away.
+  struct TetrahedronPlan {
+    std::optional<FanPlan> fan;
+    std::vector<std::array<int, 3>> faces;
+    bool unsnapped = false;
+  };
+  struct CellPlan {
+    bool made = false;
+    bool fans_allowed = true;
+    std::optional<FanPlan> fan;
+    bool per_tetrahedron = false;
+    std::vector<std::array<int, 3>> faces;
+    std::vector<TetrahedronPlan> tetrahedra;
+    bool unsnapped = false;
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> cell_polygons;
+  for (std::size_t first_polygon = 0; first_polygon < polygons.size();) {
+    std::size_t end_polygon = first_polygon;
+    while (end_polygon < polygons.size() && polygons[end_polygon].cell == polygons[first_polygon].cell) ++end_polygon;
+    cell_polygons.emplace_back(first_polygon, end_polygon);
+    first_polygon = end_polygon;
+  }
+  std::vector<CellPlan> cell_plans(cell_polygons.size());
   for (std::int64_t round = 0;; ++round) {
     result = crossing_vertices;
     out.extra = crossing_extra;
@@ -1106,7 +1141,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     // triangles `local` form one disk and the fan is valid.
     using HalfSpace = std::pair<Eigen::Vector3d, double>;
     auto crease_fan = [&](const std::vector<std::array<int, 3>>& local, const std::vector<int>& corners, const std::vector<HalfSpace>& region,
-                          bool must_snap) {
+                          bool must_snap) -> std::optional<FanPlan> {
       // The disk's border: directed edges whose reverse is not in the cell, one loop.
       std::set<std::pair<int, int>> directed;
       for (const auto& t : local)
@@ -1115,23 +1150,23 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       std::size_t undirected = 0;
       for (const auto& [p, q] : directed) {
         if (!directed.count({q, p})) {
-          if (!next.emplace(p, q).second) return false;
+          if (!next.emplace(p, q).second) return std::nullopt;
           ++undirected;
         } else if (p < q) {
           ++undirected;
         }
       }
-      if (next.size() < 3) return false;
+      if (next.size() < 3) return std::nullopt;
       if (static_cast<std::ptrdiff_t>(corners.size()) - static_cast<std::ptrdiff_t>(undirected) + static_cast<std::ptrdiff_t>(local.size()) != 1)
-        return false;
+        return std::nullopt;
       std::vector<int> loop{next.begin()->first};
       while (loop.size() <= next.size()) {
         const auto it = next.find(loop.back());
-        if (it == next.end()) return false;
+        if (it == next.end()) return std::nullopt;
         if (it->second == loop.front()) break;
         loop.push_back(it->second);
       }
-      if (loop.size() != next.size()) return false;
+      if (loop.size() != next.size()) return std::nullopt;
       // The tangent planes' meeting point nearest the centre: a point (three independent normals,
       // a corner) or a line (two, a crease), clipped to the cell.
       Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -1152,7 +1187,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           shift += svd.matrixV().col(i) * (svd.matrixU().col(i).dot(offsets) / sigma(i));
           ++rank;
         }
-      if (rank < 2) return false;
+      if (rank < 2) return std::nullopt;
       // Clipped to the region n . x <= c (each half-space moved in by `inset`).
       const double inset = 1e-6 * grid.h;
       Eigen::Vector3d apex = centre + shift;
@@ -1162,18 +1197,18 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         for (const auto& [n, c] : region) {
           const double slope = n.dot(direction), room = c - inset - n.dot(apex);
           if (std::abs(slope) < 1e-12) {
-            if (room <= 0) return false;
+            if (room <= 0) return std::nullopt;
           } else if (slope > 0) {
             s_high = std::min(s_high, room / slope);
           } else {
             s_low = std::max(s_low, room / slope);
           }
         }
-        if (!(s_low <= s_high)) return false;
+        if (!(s_low <= s_high)) return std::nullopt;
         apex += std::clamp(0.0, s_low, s_high) * direction;
       }
       for (const auto& [n, c] : region)
-        if (!(n.dot(apex) <= c)) return false;
+        if (!(n.dot(apex) <= c)) return std::nullopt;
       // On a crease of two sheets (rank 2) and with the sheets' equations: the point where the
       // sheets meet in the plane through the apex across the crease, if it is in the region.
       std::optional<SheetVertex> on_crease;
@@ -1213,7 +1248,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       // differ because a coarse cell spans a curved part of one smooth surface, the tangent planes
       // meet off the surface and the plain triangles, refined, are better. The fine cells of
       // adaptive contouring are as fine as the uniform grid's, whose fans need no snapping.
-      if (must_snap && !on_crease) return false;
+      if (must_snap && !on_crease) return std::nullopt;
       // Each fan triangle faces the way of the disk (area-weighted) or of the cell's triangle it
       // replaces along the border (a sliver standing on the crease may face sideways): a fold of
       // the fan would be a self-intersection.
@@ -1227,7 +1262,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           for (int i = 0; i < 3; ++i)
             if (t[static_cast<std::size_t>(i)] == p && t[static_cast<std::size_t>((i + 1) % 3)] == q &&
                 fan_normal.dot((position_of(t[1]) - position_of(t[0])).cross(position_of(t[2]) - position_of(t[0]))) <= 0)
-              return false;
+              return std::nullopt;
       }
       // The crease point must lie on the boundary to half the superset's error: just outside it
       // (along the disk's outward normal) is outside S and just inside it inside. A sheet's normal
@@ -1238,34 +1273,44 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           const std::optional<bool> answer = checked_inside(x);
           return !answer || *answer;
         };
-        if (in(apex + step) || !in(apex - step)) return false;
+        if (in(apex + step) || !in(apex - step)) return std::nullopt;
       }
       std::size_t nearest = 0;
       for (std::size_t j = 1; j < corners.size(); ++j)
         if ((position_of(corners[j]) - apex).squaredNorm() < (position_of(corners[nearest]) - apex).squaredNorm()) nearest = j;
-      const int near_vertex = corners[nearest];
+      FanPlan plan;
+      plan.apex = apex;
+      plan.on_crease = on_crease;
+      plan.loop = std::move(loop);
+      plan.near_vertex = corners[nearest];
+      return plan;
+    };
+    // Emits a fan: its apex as a new vertex, its triangles as faces.
+    auto emit_fan = [&](const FanPlan& plan) {
+      const int near_vertex = plan.near_vertex;
       const int v = static_cast<int>(result.num_vertices());
-      if (on_crease) crease_sheets.emplace(v, *on_crease);
-      result.add_vertex(apex, on_crease ? Eigen::Vector3d(on_crease->on[0].parameters.head<3>())
-                                        : result.parameters[static_cast<std::size_t>(near_vertex)]);
+      if (plan.on_crease) crease_sheets.emplace(v, *plan.on_crease);
+      result.add_vertex(plan.apex, plan.on_crease ? Eigen::Vector3d(plan.on_crease->on[0].parameters.head<3>())
+                                                  : result.parameters[static_cast<std::size_t>(near_vertex)]);
       if (!extra.empty()) out.extra.push_back(out.extra[static_cast<std::size_t>(near_vertex)]);
       out.source_vertex.push_back(out.source_vertex[static_cast<std::size_t>(near_vertex)]);
       vertex_part.push_back(vertex_part[static_cast<std::size_t>(near_vertex)]);
       face_fan.resize(faces.size(), 0);
+      const std::vector<int>& loop = plan.loop;
       for (std::size_t j = 0; j < loop.size(); ++j) {
         faces.push_back({v, loop[j], loop[(j + 1) % loop.size()]});
         face_fan.push_back(1);
       }
-      return true;
+      ++stats.crease_vertices;
+      if (!plan.on_crease) ++stats.crease_cells_unsnapped;
     };
-    for (std::size_t first_polygon = 0; first_polygon < polygons.size();) {
-      face_cell.resize(faces.size(), current_cell);
-      current_cell = polygons[first_polygon].cell;
-      std::size_t end_polygon = first_polygon;
-      while (end_polygon < polygons.size() && polygons[end_polygon].cell == polygons[first_polygon].cell) ++end_polygon;
+    auto plan_cell = [&](std::size_t g) {
+      CellPlan plan;
+      plan.made = true;
+      const std::size_t cell_first = cell_polygons[g].first, cell_end = cell_polygons[g].second;
       std::vector<std::array<int, 3>> local;
       std::vector<int> corners;
-      for (std::size_t q = first_polygon; q < end_polygon; ++q) {
+      for (std::size_t q = cell_first; q < cell_end; ++q) {
         const ContourPolygon& polygon = polygons[q];
         const auto count = static_cast<std::size_t>(polygon.count);
         // A quadrilateral is split along its shorter diagonal.
@@ -1277,9 +1322,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           local.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
         for (std::size_t j = 0; j < count; ++j) corners.push_back(polygon.vertex[j]);
       }
-      const std::uint64_t cell = polygons[first_polygon].cell;
-      const std::size_t cell_first = first_polygon;
-      first_polygon = end_polygon;
+      const std::uint64_t cell = polygons[cell_first].cell;
       std::sort(corners.begin(), corners.end());
       corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
       bool crease = sheet_crossing && options.crease_angle_degrees > 0 && corners.size() >= 3;
@@ -1291,6 +1334,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           smallest_cos = std::min(smallest_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(corners[i])].normal)));
       }
       const bool fans_allowed = !unfanned_cells.count(cell);
+      plan.fans_allowed = fans_allowed;
       crease = crease && smallest_cos < crease_cos && fans_allowed;
       const Eigen::Vector3d low = grid.point(cell_of[cell].low);
       const double width = static_cast<double>(cell_of[cell].size) * grid.h;
@@ -1301,20 +1345,18 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           box.emplace_back(e, low(d) + width);
           box.emplace_back(-e, -low(d));
         }
-        crease = crease_fan(local, corners, box, snap_creases && (ratio == 1 || cell_of[cell].size > 1));
-        if (crease) {
-          ++stats.crease_vertices;
-          if (!crease_sheets.count(static_cast<int>(result.num_vertices()) - 1)) ++stats.crease_cells_unsnapped;
-        }
+        plan.fan = crease_fan(local, corners, box, snap_creases && (ratio == 1 || cell_of[cell].size > 1));
+        if (plan.fan) return plan;
       }
-      if (crease) continue;
       if (!(sheet_crossing && options.crease_angle_degrees > 0 && smallest_cos < crease_cos) || !fans_allowed) {
-        if (sheet_crossing && options.crease_angle_degrees > 0 && smallest_cos < crease_cos) ++stats.crease_cells_unsnapped;
-        faces.insert(faces.end(), local.begin(), local.end());
-        continue;
+        plan.unsnapped = sheet_crossing && options.crease_angle_degrees > 0 && smallest_cos < crease_cos;
+        plan.faces = std::move(local);
+        return plan;
       }
       // The cell's triangles are no disk or its fan folds: each tetrahedron's polygon alone.
-      for (std::size_t q = cell_first; q < first_polygon; ++q) {
+      plan.per_tetrahedron = true;
+      for (std::size_t q = cell_first; q < cell_end; ++q) {
+        TetrahedronPlan& own_plan = plan.tetrahedra.emplace_back();
         const ContourPolygon& polygon = polygons[q];
         const auto count = static_cast<std::size_t>(polygon.count);
         std::vector<std::array<int, 3>> own;
@@ -1346,14 +1388,38 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             n.normalize();
             faces_of_tet.emplace_back(n, n.dot(p0));
           }
-          if (crease_fan(own, own_corners, faces_of_tet, snap_creases && (ratio == 1 || cell_of[cell].size > 1))) {
-            ++stats.crease_vertices;
-            if (!crease_sheets.count(static_cast<int>(result.num_vertices()) - 1)) ++stats.crease_cells_unsnapped;
-            continue;
-          }
-          ++stats.crease_cells_unsnapped;
+          own_plan.fan = crease_fan(own, own_corners, faces_of_tet, snap_creases && (ratio == 1 || cell_of[cell].size > 1));
+          if (own_plan.fan) continue;
+          own_plan.unsnapped = true;
         }
-        faces.insert(faces.end(), own.begin(), own.end());
+        own_plan.faces = std::move(own);
+      }
+      return plan;
+    };
+    tbb::parallel_for(std::size_t{0}, cell_polygons.size(), [&](std::size_t g) {
+      const CellPlan& plan = cell_plans[g];
+      if (!plan.made || plan.fans_allowed != !unfanned_cells.count(polygons[cell_polygons[g].first].cell)) cell_plans[g] = plan_cell(g);
+    });
+    for (std::size_t g = 0; g < cell_polygons.size(); ++g) {
+      face_cell.resize(faces.size(), current_cell);
+      current_cell = polygons[cell_polygons[g].first].cell;
+      const CellPlan& plan = cell_plans[g];
+      if (plan.fan) {
+        emit_fan(*plan.fan);
+        continue;
+      }
+      if (!plan.per_tetrahedron) {
+        if (plan.unsnapped) ++stats.crease_cells_unsnapped;
+        faces.insert(faces.end(), plan.faces.begin(), plan.faces.end());
+        continue;
+      }
+      for (const TetrahedronPlan& own : plan.tetrahedra) {
+        if (own.fan) {
+          emit_fan(*own.fan);
+          continue;
+        }
+        if (own.unsnapped) ++stats.crease_cells_unsnapped;
+        faces.insert(faces.end(), own.faces.begin(), own.faces.end());
       }
     }
 
