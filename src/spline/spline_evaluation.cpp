@@ -241,6 +241,102 @@ void contract_hypervolume_fixed(const double* G, std::ptrdiff_t sv, std::ptrdiff
   if constexpr (Order) contract_volume_fixed<N0, N1, N2, C, 0>(&t1[0][0][0], L, N1 * L, Bu, Bv, Bw, results + 4 * C);
 }
 
+// Second order, for the trimming of swept envelopes: Newton on a fold or the rank-deficient set
+// (Conkey–Joy 2000 §5) needs the second partials of s(u, v, w, t) at every step. The same sum
+// factorisation with the basis functions' second derivatives (B[2n..3n)): t is contracted with
+// B_t, B_t' and B_t'', each block then finishes as a volume to the order left. Results go to
+// `table.position` of their multi-index.
+template <int N0, int N1, int N2, int C>
+void contract_volume_to_order(const double* G, std::ptrdiff_t sv, std::ptrdiff_t sw, const double* Bu, const double* Bv,
+                              const double* Bw, int order, double (&out)[3][3][3][C]) {
+  constexpr int L = N0 * C;
+  double w[3][N1][L];
+  for (int j = 0; j < N1; ++j)
+    for (int x = 0; x < L; ++x) {
+      double a[3] = {0.0, 0.0, 0.0};
+      for (int k = 0; k < N2; ++k) {
+        const double g = G[j * sv + k * sw + x];
+        for (int e = 0; e <= order; ++e) a[e] += Bw[e * N2 + k] * g;
+      }
+      for (int e = 0; e <= order; ++e) w[e][j][x] = a[e];
+    }
+  double v[3][3][L];
+  for (int dv = 0; dv <= order; ++dv)
+    for (int dw = 0; dv + dw <= order; ++dw)
+      for (int x = 0; x < L; ++x) {
+        double a = 0.0;
+        for (int j = 0; j < N1; ++j) a += Bv[dv * N1 + j] * w[dw][j][x];
+        v[dv][dw][x] = a;
+      }
+  for (int du = 0; du <= order; ++du)
+    for (int dv = 0; du + dv <= order; ++dv)
+      for (int dw = 0; du + dv + dw <= order; ++dw)
+        for (int c = 0; c < C; ++c) {
+          double a = 0.0;
+          for (int i = 0; i < N0; ++i) a += Bu[du * N0 + i] * v[dv][dw][i * C + c];
+          out[du][dv][dw][c] = a;
+        }
+}
+
+template <int N0, int N1, int N2, int C>
+void contract_hypervolume_second(const double* G, std::ptrdiff_t sv, std::ptrdiff_t sw, std::ptrdiff_t st, int nt, const double* Bu,
+                                 const double* Bv, const double* Bw, const double* Bt, const detail::DerivativeTable<4>& table,
+                                 double* results) {
+  constexpr int L = N0 * C;
+  double t[3][N2][N1][L];
+  for (int k = 0; k < N2; ++k)
+    for (int j = 0; j < N1; ++j)
+      for (int x = 0; x < L; ++x) {
+        const double* row = G + k * sw + j * sv + x;
+        double a0 = 0.0, a1 = 0.0, a2 = 0.0;
+        for (int q = 0; q < nt; ++q) {
+          const double g = row[q * st];
+          a0 += Bt[q] * g;
+          a1 += Bt[nt + q] * g;
+          a2 += Bt[2 * nt + q] * g;
+        }
+        t[0][k][j][x] = a0;
+        t[1][k][j][x] = a1;
+        t[2][k][j][x] = a2;
+      }
+  double out[3][3][3][C];
+  for (int dt = 0; dt <= 2; ++dt) {
+    contract_volume_to_order<N0, N1, N2, C>(&t[dt][0][0][0], L, N1 * L, Bu, Bv, Bw, 2 - dt, out);
+    for (int du = 0; du + dt <= 2; ++du)
+      for (int dv = 0; du + dv + dt <= 2; ++dv)
+        for (int dw = 0; du + dv + dw + dt <= 2; ++dw) {
+          const int a = table.position[static_cast<std::size_t>(table.dense_index({du, dv, dw, dt}))];
+          for (int c = 0; c < C; ++c) results[a * C + c] = out[du][dv][dw][c];
+        }
+  }
+}
+
+using SecondOrderHyperKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, std::ptrdiff_t, int, const double*, const double*,
+                                        const double*, const double*, const detail::DerivativeTable<4>&, double*);
+
+template <int C, int N0>
+SecondOrderHyperKernel second_order_kernel_n1(int n12) {
+  if (n12 == 2) return contract_hypervolume_second<N0, 2, 2, C>;
+  if (n12 == 3) return contract_hypervolume_second<N0, 3, 3, C>;
+  return contract_hypervolume_second<N0, 4, 4, C>;
+}
+
+template <int C>
+SecondOrderHyperKernel second_order_kernel_of(const std::array<int, 3>& n) {
+  if (n[0] == 2) return second_order_kernel_n1<C, 2>(n[1]);
+  if (n[0] == 3) return second_order_kernel_n1<C, 3>(n[1]);
+  return second_order_kernel_n1<C, 4>(n[1]);
+}
+
+// The 4-variate second-order kernel for the sizes the fixed kernels below take; nullptr otherwise.
+SecondOrderHyperKernel second_order_hyper_kernel(const std::array<int, 3>& n, int c) {
+  if (c != 3 && c != 4) return nullptr;
+  for (int x : n)
+    if (x < 2 || x > 4) return nullptr;
+  if (n[1] != n[2]) return nullptr;
+  return c == 3 ? second_order_kernel_of<3>(n) : second_order_kernel_of<4>(n);
+}
+
 // The fixed-size kernels for n_u in {2, 3, 4} and n_v = n_w in {2, 3, 4} (degrees 1 to 3) and 3
 // or 4 numbers per coefficient; nullptr otherwise (the general recurrence then runs).
 using FixedKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, const double*, const double*, const double*,
@@ -351,9 +447,17 @@ void TensorSpline<D>::evaluate_derivatives(const Parameter& t, int order, double
 
   FixedKernel fixed = nullptr;
   FixedHyperKernel fixed_hyper = nullptr;
+  SecondOrderHyperKernel second_hyper = nullptr;
   if constexpr (D == 3) fixed = fixed_kernels({n[0], n[1], n[2]}, C, order).first;
-  if constexpr (D == 4) fixed_hyper = fixed_kernels({n[0], n[1], n[2]}, C, order).second;
-  if (fixed) {
+  if constexpr (D == 4) {
+    fixed_hyper = fixed_kernels({n[0], n[1], n[2]}, C, order).second;
+    if (order == 2) second_hyper = second_order_hyper_kernel({n[0], n[1], n[2]}, C);
+  }
+  if (second_hyper) {
+    if constexpr (D == 4)
+      second_hyper(evaluation_coefficients().data() + base, stride[1], stride[2], stride[3], n[3], basis[0], basis[1], basis[2], basis[3],
+                   table, results);
+  } else if (fixed) {
     fixed(evaluation_coefficients().data() + base, stride[1], stride[2], basis[0], basis[1], basis[2], results);
   } else if (fixed_hyper) {
     if constexpr (D == 4) {

@@ -150,11 +150,12 @@ TEST(TensorSpline, GridEvaluationEqualsScatteredEvaluation) {
   check(random_spline<4>(rng, {1, 2, 1, 2}, 2, 2, false));
 }
 
-// Value and first partials of 4-variate splines of degrees 1 to 3 in u, v, w (the fixed-size
-// path that swept solids take) against the grid evaluation's general recurrence at the same
-// points, and against finite differences: polynomial and rational, three and four numbers per
-// control point, every degree the fixed path covers and one it does not.
-TEST(TensorSpline, FourVariateValueAndFirstPartialsEqualTheGeneralRecurrence) {
+// Value, first and second partials of 4-variate splines of degrees 1 to 3 in u, v, w (the
+// fixed-size paths that swept solids take; second order for the trimming's Newton on folds)
+// against the grid evaluation's general recurrence at the same points, and against finite
+// differences: polynomial and rational, three and four numbers per control point, every degree
+// the fixed paths cover and some they do not.
+TEST(TensorSpline, FourVariateValueAndPartialsToOrderTwoEqualTheGeneralRecurrence) {
   std::mt19937 rng(15);
   auto check = [&](const TensorSpline<4>& s) {
     check_derivatives(s, rng);
@@ -164,7 +165,7 @@ TEST(TensorSpline, FourVariateValueAndFirstPartialsEqualTheGeneralRecurrence) {
       for (int i = 0; i < 3; ++i) samples[static_cast<std::size_t>(d)].push_back(at(rng));
       samples[static_cast<std::size_t>(d)].push_back(s.knot_vector(d).breakpoints()[1]);
     }
-    for (int order = 0; order <= 1; ++order) {
+    for (int order = 0; order <= 2; ++order) {
       const auto grid = s.evaluate_grid(samples, order);
       const std::size_t n_alpha = derivative_multi_indices<4>(order).size(), points = 256;
       const int k = s.dimension();
