@@ -65,12 +65,13 @@ SelfIntersectionRecord::SelfIntersectionRecord() : state_(std::make_unique<State
 SelfIntersectionRecord::~SelfIntersectionRecord() = default;
 SelfIntersectionRecord::SelfIntersectionRecord(SelfIntersectionRecord&&) noexcept = default;
 SelfIntersectionRecord& SelfIntersectionRecord::operator=(SelfIntersectionRecord&&) noexcept = default;
-std::size_t SelfIntersectionRecord::reused_triangles() const { return state_->reused; }
-std::size_t SelfIntersectionRecord::tested_triangles() const { return state_->tested; }
+std::size_t SelfIntersectionRecord::reused_triangles() const { return state_ ? state_->reused : 0; }
+std::size_t SelfIntersectionRecord::tested_triangles() const { return state_ ? state_->tested : 0; }
 
 std::vector<std::pair<std::size_t, std::size_t>> self_intersecting_triangles(const TriangleMesh& mesh, SelfIntersectionRecord* record) {
   using namespace self_intersections_detail;
   validate_mesh(mesh);
+  if (record && !record->state_) record->state_ = std::make_unique<SelfIntersectionRecord::State>();  // moved from
   const std::size_t n = mesh.num_triangles();
   std::vector<std::pair<std::size_t, std::size_t>> result;
   if (n == 0) {

@@ -78,6 +78,13 @@ TEST(SelfIntersectingTriangles, ARecordGivesTheFullAnswerTestingOnlyAroundTheCha
 
   // Moving C back removes its pairs, again as a full test finds.
   EXPECT_EQ(self_intersecting_triangles(before, &record), first);
+
+  // A record moved elsewhere goes with its contents; the one moved from starts empty.
+  SelfIntersectionRecord moved = std::move(record);
+  EXPECT_EQ(self_intersecting_triangles(before, &moved), first);
+  EXPECT_EQ(moved.tested_triangles(), 0u);
+  EXPECT_EQ(self_intersecting_triangles(before, &record), first);
+  EXPECT_EQ(record.tested_triangles(), before.num_triangles());
 }
 
 // Where two vertices share a position, whether two triangles touch depends on more than their

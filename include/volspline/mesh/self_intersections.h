@@ -11,11 +11,12 @@
 
 namespace volspline {
 
-/// What the last test of a mesh found: its triangles (by their corners' coordinates) and the
-/// pairs of them that intersect. The contouring of swept envelopes measures its result after
+/// What the last test of a mesh found: its vertices by position, its triangles by their vertices,
+/// and the pairs of triangles that intersect. The contouring of swept envelopes measures its result after
 /// every crease repair and grid adaptation, each of which changes a few percent of about
 /// 200,000 triangles; with a record, the next test looks only at the pairs that involve a
-/// triangle the earlier mesh did not have (docs/envelopes.md, "Checks").
+/// triangle the earlier mesh did not have (docs/envelopes.md, "Checks that redo only what
+/// changed"). A moved-from record is empty again.
 class SelfIntersectionRecord {
  public:
   SelfIntersectionRecord();
