@@ -1304,6 +1304,28 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       ++stats.crease_vertices;
       if (!plan.on_crease) ++stats.crease_cells_unsnapped;
     };
+    // A marching-tetrahedra polygon as triangles, a quadrilateral split along its shorter diagonal.
+    auto polygon_triangles = [&](const ContourPolygon& polygon, std::vector<std::array<int, 3>>& out) {
+      const auto count = static_cast<std::size_t>(polygon.count);
+      std::size_t first = 0;
+      if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
+                            (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
+        first = 1;
+      for (std::size_t j = 1; j + 1 < count; ++j)
+        out.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
+    };
+    // Whether the crossings `corners` (sorted) all lie on sheets with normals, starting from
+    // `sharp`, and the smallest |cos| between their normals (as far as it was looked at).
+    auto normals_spread = [&](const std::vector<int>& corners, bool sharp) {
+      double smallest_cos = 1;
+      for (std::size_t j = 0; sharp && j < corners.size(); ++j) {
+        const ContourCrossing& xj = crossings[static_cast<std::size_t>(corners[j])];
+        if (!xj.on_sheet || xj.normal.isZero()) sharp = false;
+        for (std::size_t i = 0; sharp && i < j; ++i)
+          smallest_cos = std::min(smallest_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(corners[i])].normal)));
+      }
+      return std::pair<bool, double>(sharp, smallest_cos);
+    };
     auto plan_cell = [&](std::size_t g) {
       CellPlan plan;
       plan.made = true;
@@ -1312,27 +1334,13 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       std::vector<int> corners;
       for (std::size_t q = cell_first; q < cell_end; ++q) {
         const ContourPolygon& polygon = polygons[q];
-        const auto count = static_cast<std::size_t>(polygon.count);
-        // A quadrilateral is split along its shorter diagonal.
-        std::size_t first = 0;
-        if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
-                              (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
-          first = 1;
-        for (std::size_t j = 1; j + 1 < count; ++j)
-          local.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
-        for (std::size_t j = 0; j < count; ++j) corners.push_back(polygon.vertex[j]);
+        polygon_triangles(polygon, local);
+        corners.insert(corners.end(), polygon.vertex.begin(), polygon.vertex.begin() + polygon.count);
       }
       const std::uint64_t cell = polygons[cell_first].cell;
       std::sort(corners.begin(), corners.end());
       corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-      bool crease = sheet_crossing && options.crease_angle_degrees > 0 && corners.size() >= 3;
-      double smallest_cos = 1;
-      for (std::size_t j = 0; crease && j < corners.size(); ++j) {
-        const ContourCrossing& xj = crossings[static_cast<std::size_t>(corners[j])];
-        if (!xj.on_sheet || xj.normal.isZero()) crease = false;
-        for (std::size_t i = 0; crease && i < j; ++i)
-          smallest_cos = std::min(smallest_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(corners[i])].normal)));
-      }
+      auto [crease, smallest_cos] = normals_spread(corners, sheet_crossing && options.crease_angle_degrees > 0 && corners.size() >= 3);
       const bool fans_allowed = !unfanned_cells.count(cell);
       plan.fans_allowed = fans_allowed;
       crease = crease && smallest_cos < crease_cos && fans_allowed;
@@ -1358,24 +1366,11 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       for (std::size_t q = cell_first; q < cell_end; ++q) {
         TetrahedronPlan& own_plan = plan.tetrahedra.emplace_back();
         const ContourPolygon& polygon = polygons[q];
-        const auto count = static_cast<std::size_t>(polygon.count);
         std::vector<std::array<int, 3>> own;
-        std::size_t first = 0;
-        if (count == 4 && (position_of(polygon.vertex[1]) - position_of(polygon.vertex[3])).squaredNorm() <
-                              (position_of(polygon.vertex[0]) - position_of(polygon.vertex[2])).squaredNorm())
-          first = 1;
-        for (std::size_t j = 1; j + 1 < count; ++j)
-          own.push_back({polygon.vertex[first], polygon.vertex[(first + j) % count], polygon.vertex[(first + j + 1) % count]});
+        polygon_triangles(polygon, own);
         std::vector<int> own_corners(polygon.vertex.begin(), polygon.vertex.begin() + polygon.count);
         std::sort(own_corners.begin(), own_corners.end());
-        bool sharp = true;
-        double own_cos = 1;
-        for (std::size_t j = 0; sharp && j < own_corners.size(); ++j) {
-          const ContourCrossing& xj = crossings[static_cast<std::size_t>(own_corners[j])];
-          if (!xj.on_sheet || xj.normal.isZero()) sharp = false;
-          for (std::size_t i = 0; sharp && i < j; ++i)
-            own_cos = std::min(own_cos, std::abs(xj.normal.dot(crossings[static_cast<std::size_t>(own_corners[i])].normal)));
-        }
+        const auto [sharp, own_cos] = normals_spread(own_corners, true);
         if (sharp && own_cos < crease_cos) {
           // The tetrahedron's four faces, outward.
           std::array<Eigen::Vector3d, 4> corner;
