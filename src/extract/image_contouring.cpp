@@ -26,7 +26,10 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <tbb/concurrent_unordered_map.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "volspline/core/elapsed_time.h"
 #include "volspline/core/error.h"
@@ -219,9 +222,13 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   }
 
   // The (coarse) cells within `reach` of a superset triangle (closed boxes: a point on a cell face
-  // counts for both cells).
+  // counts for both cells). Blocks of triangles are listed in parallel and merged (sorted, unique)
+  // after each block, so that the budget check bounds the memory as a serial loop would.
   std::vector<std::uint64_t> cell_list;
-  for (const ContourTriangle& t : triangles) {
+  // Set when one thread alone has listed more distinct cells than the budget.
+  std::atomic<bool> over_budget{false};
+  const auto max_listed = static_cast<std::size_t>(options.max_cells);
+  const auto list_cells_of = [&](const ContourTriangle& t, std::vector<std::uint64_t>& out) {
     const CGAL::Bbox_3 b = t.bbox();
     std::array<std::int64_t, 3> first{}, last{};
     for (int d = 0; d < 3; ++d) {
@@ -231,7 +238,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     }
     const bool small = last[0] - first[0] <= 2 && last[1] - first[1] <= 2 && last[2] - first[2] <= 2;
     for (std::int64_t k = first[2]; k <= last[2]; ++k)
-      for (std::int64_t j = first[1]; j <= last[1]; ++j)
+      for (std::int64_t j = first[1]; j <= last[1]; ++j) {
+        if (over_budget.load(std::memory_order_relaxed)) return;
         for (std::int64_t i = first[0]; i <= last[0]; ++i) {
           if (!small) {
             const Eigen::Vector3d c = grid.origin + coarse_h * Eigen::Vector3d(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k));
@@ -239,13 +247,31 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             if (!CGAL::do_intersect(t, CGAL::Bbox_3(c.x() - m, c.y() - m, c.z() - m, c.x() + coarse_h + m, c.y() + coarse_h + m, c.z() + coarse_h + m)))
               continue;
           }
-          cell_list.push_back(grid.key(ratio * i, ratio * j, ratio * k));
+          out.push_back(grid.key(ratio * i, ratio * j, ratio * k));
+          if (out.size() > 4 * max_listed) {
+            std::sort(out.begin(), out.end());
+            out.erase(std::unique(out.begin(), out.end()), out.end());
+            if (out.size() > max_listed) {
+              over_budget = true;
+              return;
+            }
+          }
         }
-    if (static_cast<std::int64_t>(cell_list.size()) > 4 * options.max_cells) {
-      std::sort(cell_list.begin(), cell_list.end());
-      cell_list.erase(std::unique(cell_list.begin(), cell_list.end()), cell_list.end());
-    }
-    if (static_cast<std::int64_t>(cell_list.size()) > options.max_cells)
+      }
+  };
+  constexpr std::size_t kListingBlock = 1 << 15;
+  for (std::size_t block = 0; block < triangles.size(); block += kListingBlock) {
+    const std::size_t block_end = std::min(triangles.size(), block + kListingBlock);
+    tbb::enumerable_thread_specific<std::vector<std::uint64_t>> listed;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(block, block_end, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<std::uint64_t>& out = listed.local();
+      for (std::size_t t = r.begin(); t != r.end() && !over_budget.load(std::memory_order_relaxed); ++t) list_cells_of(triangles[t], out);
+    });
+    if (!over_budget)
+      for (const std::vector<std::uint64_t>& part : listed) cell_list.insert(cell_list.end(), part.begin(), part.end());
+    tbb::parallel_sort(cell_list.begin(), cell_list.end());
+    cell_list.erase(std::unique(cell_list.begin(), cell_list.end()), cell_list.end());
+    if (over_budget || static_cast<std::int64_t>(cell_list.size()) > options.max_cells)
       throw InvalidInput("the contouring grid needs more than " + std::to_string(options.max_cells) + " cells; choose a larger cell size",
                          "cell_size");
   }
@@ -408,13 +434,14 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   };
   // Enters the points of `keys` not labelled yet and labels them.
   auto label_all = [&](std::vector<std::uint64_t> keys, std::int64_t step) {
-    std::vector<std::uint64_t> fresh;
-    for (std::uint64_t k : keys)
-      if (label.try_emplace(k, -1).second) fresh.push_back(k);
     // In key order (rows along x, then y, then z), so that a thread's consecutive queries are
     // grid neighbours and a membership test that starts from its last answer (image_membership.h)
     // starts next door.
-    std::sort(fresh.begin(), fresh.end());
+    tbb::parallel_sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<std::uint64_t> fresh;
+    for (std::uint64_t k : keys)
+      if (label.try_emplace(k, -1).second) fresh.push_back(k);
     label_points(fresh, step);
   };
   std::vector<std::uint64_t> frontier(cells.begin(), cells.end());
@@ -452,7 +479,12 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // crossed lattice edges (inside corner, outside corner), oriented from inside to outside on the
   // edges' midpoints (the level set at 1/2 of the linear interpolant of the labels, whose
   // orientation moving the vertices along their edges does not change).
-  std::map<std::pair<std::uint64_t, std::uint64_t>, int> edge_vertex;
+  struct LatticeEdgeHash {
+    std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& e) const {
+      return std::hash<std::uint64_t>{}(e.first * 0x9e3779b97f4a7c15ull ^ e.second);
+    }
+  };
+  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, int, LatticeEdgeHash> edge_vertex;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
   std::vector<ContourPolygon> polygons;
   std::vector<ContourCell> cell_of;
@@ -465,47 +497,80 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     const auto i = grid.index(key);
     return Eigen::Vector3d(static_cast<double>(i[0]), static_cast<double>(i[1]), static_cast<double>(i[2]));
   };
-  auto march = [&](const std::array<std::uint64_t, 4>& tet, std::uint64_t cell) {
-    std::vector<int> ins, outs;
-    for (int c = 0; c < 4; ++c) (label.at(tet[static_cast<std::size_t>(c)]) ? ins : outs).push_back(c);
-    if (ins.empty() || outs.empty()) return;
+  auto march = [&](const std::array<std::uint64_t, 4>& tet, std::uint64_t cell, std::vector<ContourPolygon>& out) {
+    std::array<int, 4> ins{}, outs{};
+    std::size_t n_in = 0, n_out = 0;
+    for (int c = 0; c < 4; ++c) {
+      if (label.at(tet[static_cast<std::size_t>(c)])) ins[n_in++] = c;
+      else outs[n_out++] = c;
+    }
+    if (n_in == 0 || n_out == 0) return;
     std::array<Eigen::Vector3d, 4> corner;
     for (int c = 0; c < 4; ++c) corner[static_cast<std::size_t>(c)] = lattice_point(tet[static_cast<std::size_t>(c)]);
     Eigen::Vector3d in_centre = Eigen::Vector3d::Zero(), out_centre = Eigen::Vector3d::Zero();
-    for (int c : ins) in_centre += corner[static_cast<std::size_t>(c)] / static_cast<double>(ins.size());
-    for (int c : outs) out_centre += corner[static_cast<std::size_t>(c)] / static_cast<double>(outs.size());
+    for (std::size_t k = 0; k < n_in; ++k) in_centre += corner[static_cast<std::size_t>(ins[k])] / static_cast<double>(n_in);
+    for (std::size_t k = 0; k < n_out; ++k) out_centre += corner[static_cast<std::size_t>(outs[k])] / static_cast<double>(n_out);
     const Eigen::Vector3d outward = out_centre - in_centre;
-    std::vector<std::pair<int, int>> cycle;
-    if (ins.size() == 1) cycle = {{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[0], outs[2]}};
-    else if (outs.size() == 1) cycle = {{ins[0], outs[0]}, {ins[1], outs[0]}, {ins[2], outs[0]}};
-    else cycle = {{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[1], outs[1]}, {ins[1], outs[0]}};
+    std::array<std::pair<int, int>, 4> cycle{};
+    std::size_t cycle_size = 3;
+    if (n_in == 1) cycle = {{{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[0], outs[2]}, {}}};
+    else if (n_out == 1) cycle = {{{ins[0], outs[0]}, {ins[1], outs[0]}, {ins[2], outs[0]}, {}}};
+    else {
+      cycle = {{{ins[0], outs[0]}, {ins[0], outs[1]}, {ins[1], outs[1]}, {ins[1], outs[0]}}};
+      cycle_size = 4;
+    }
     auto mid = [&](const std::pair<int, int>& p) {
       return Eigen::Vector3d(0.5 * (corner[static_cast<std::size_t>(p.first)] + corner[static_cast<std::size_t>(p.second)]) - in_centre);
     };
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    for (std::size_t j = 0; j < cycle.size(); ++j) normal += mid(cycle[j]).cross(mid(cycle[(j + 1) % cycle.size()]));
-    if (normal.dot(outward) < 0) std::reverse(cycle.begin(), cycle.end());
+    for (std::size_t j = 0; j < cycle_size; ++j) normal += mid(cycle[j]).cross(mid(cycle[(j + 1) % cycle_size]));
+    if (normal.dot(outward) < 0) std::reverse(cycle.begin(), cycle.begin() + static_cast<std::ptrdiff_t>(cycle_size));
+    // The crossed edges as corner pairs 4 i + o (numbered by march_cells).
     ContourPolygon polygon;
-    polygon.count = static_cast<int>(cycle.size());
-    for (std::size_t j = 0; j < cycle.size(); ++j)
-      polygon.vertex[j] = edge_id(tet[static_cast<std::size_t>(cycle[j].first)], tet[static_cast<std::size_t>(cycle[j].second)]);
+    polygon.count = static_cast<int>(cycle_size);
+    for (std::size_t j = 0; j < cycle_size; ++j) polygon.vertex[j] = 4 * cycle[j].first + cycle[j].second;
     polygon.cell = cell;
     polygon.tetrahedron = tet;
-    polygons.push_back(polygon);
+    out.push_back(polygon);
   };
   // The six Kuhn tetrahedra of a cube `size` lattice steps wide.
-  auto march_cube = [&](std::uint64_t low, std::int64_t size) {
-    const auto cell = static_cast<std::uint64_t>(cell_of.size());
-    cell_of.push_back({low, size});
+  auto march_cube = [&](std::uint64_t low, std::int64_t size, std::uint64_t cell, std::vector<ContourPolygon>& out) {
     for (const auto& tet : kContourKuhnTetrahedra) {
       std::array<std::uint64_t, 4> keys{};
       for (int c = 0; c < 4; ++c) keys[static_cast<std::size_t>(c)] = corner_key(low, tet[static_cast<std::size_t>(c)], size);
-      march(keys, cell);
+      march(keys, cell, out);
     }
+  };
+  // Marches the cells `list` (cell number: cell_of's size before the call + index) in parallel,
+  // in chunks, and numbers the edges in list order: the same cells, polygons and edge numbers
+  // as one serial pass. march_entry(k, cell, out) marches list[k]'s tetrahedra.
+  auto march_cells = [&](const std::vector<std::pair<std::uint64_t, std::int64_t>>& list, const auto& march_entry) {
+    const auto first_cell = static_cast<std::uint64_t>(cell_of.size());
+    for (const auto& entry : list) cell_of.push_back({entry.first, entry.second});
+    constexpr std::size_t kChunk = 256;
+    std::vector<std::vector<ContourPolygon>> chunks((list.size() + kChunk - 1) / kChunk);
+    tbb::parallel_for(std::size_t{0}, chunks.size(), [&](std::size_t c) {
+      for (std::size_t k = c * kChunk; k < std::min(list.size(), (c + 1) * kChunk); ++k) march_entry(k, first_cell + k, chunks[c]);
+    });
+    for (const std::vector<ContourPolygon>& chunk : chunks)
+      for (ContourPolygon polygon : chunk) {
+        for (int j = 0; j < polygon.count; ++j) {
+          int& v = polygon.vertex[static_cast<std::size_t>(j)];
+          v = edge_id(polygon.tetrahedron[static_cast<std::size_t>(v / 4)], polygon.tetrahedron[static_cast<std::size_t>(v % 4)]);
+        }
+        polygons.push_back(polygon);
+      }
   };
   std::vector<std::uint64_t> sorted_cells(cells.begin(), cells.end());
   std::sort(sorted_cells.begin(), sorted_cells.end());
-  for (std::uint64_t cell : sorted_cells) march_cube(cell, ratio);
+  {
+    std::vector<std::pair<std::uint64_t, std::int64_t>> grid_cells;
+    grid_cells.reserve(sorted_cells.size());
+    for (std::uint64_t cell : sorted_cells) grid_cells.emplace_back(cell, ratio);
+    march_cells(grid_cells, [&](std::size_t k, std::uint64_t cell, std::vector<ContourPolygon>& out) {
+      march_cube(grid_cells[k].first, grid_cells[k].second, cell, out);
+    });
+  }
 
   // The crossings: the superset's intersections with the edge, sorted along it; between the
   // inside end and the outside end, the crossing after the last stretch found inside (binary
@@ -884,36 +949,61 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     std::vector<std::uint64_t> grow_from(sorted_refined);
     for (std::uint64_t cell : sorted_cells)
       if (!refined.count(cell)) grow_from.push_back(cell);
+    // Each round's cells are looked at in parallel, in chunks whose results are entered in
+    // order: the same labels and cells as one serial pass.
+    constexpr std::size_t kGrowChunk = 256;
     while (!grow_from.empty()) {
+      const std::size_t n_chunks = (grow_from.size() + kGrowChunk - 1) / kGrowChunk;
+      const auto chunk_range = [&](std::size_t c) {
+        return std::pair<std::size_t, std::size_t>{c * kGrowChunk, std::min(grow_from.size(), (c + 1) * kGrowChunk)};
+      };
+      std::vector<std::vector<std::uint64_t>> chunk_corners(n_chunks), chunk_centres(n_chunks);
+      tbb::parallel_for(std::size_t{0}, n_chunks, [&](std::size_t c) {
+        const auto range = chunk_range(c);
+        for (std::size_t k = range.first; k < range.second; ++k)
+          if (!refined.count(grow_from[k])) cell_points(grow_from[k], chunk_corners[c], chunk_centres[c]);
+      });
       std::vector<std::uint64_t> corners, centres;
-      for (std::uint64_t cell : grow_from)
-        if (!refined.count(cell)) cell_points(cell, corners, centres);
+      for (std::size_t c = 0; c < n_chunks; ++c) {
+        corners.insert(corners.end(), chunk_corners[c].begin(), chunk_corners[c].end());
+        centres.insert(centres.end(), chunk_centres[c].begin(), chunk_centres[c].end());
+      }
+      chunk_corners.clear();
+      chunk_centres.clear();
       label_all(std::move(corners), ratio);
       label_all(std::move(centres), ratio / 2);
+      // Neighbours across a face whose points disagree, not in the complex before this round.
+      std::vector<std::vector<std::uint64_t>> chunk_grown(n_chunks);
+      tbb::parallel_for(std::size_t{0}, n_chunks, [&](std::size_t c) {
+        const auto range = chunk_range(c);
+        std::vector<std::array<std::uint64_t, 3>> face;
+        for (std::size_t k = range.first; k < range.second; ++k) {
+          const std::uint64_t cell = grow_from[k];
+          const auto i = grid.index(cell);
+          for (int axis = 0; axis < 3; ++axis)
+            for (int side = 0; side < 2; ++side) {
+              std::array<std::int64_t, 3> j = i;
+              j[static_cast<std::size_t>(axis)] += side ? ratio : -ratio;
+              if (!cell_in_grid(j)) continue;
+              const std::uint64_t neighbour = grid.key(j[0], j[1], j[2]);
+              if (refined.count(neighbour) || coarse.count(neighbour)) continue;
+              face.clear();
+              face_triangles(side ? neighbour : cell, axis, face);
+              int in = 0, count = 0;
+              for (const auto& t : face)
+                for (std::uint64_t key : t) {
+                  in += label.at(key);
+                  ++count;
+                }
+              if (in == 0 || in == count) continue;
+              chunk_grown[c].push_back(neighbour);
+            }
+        }
+      });
       std::vector<std::uint64_t> grown;
-      std::vector<std::array<std::uint64_t, 3>> face;
-      for (std::uint64_t cell : grow_from) {
-        const auto i = grid.index(cell);
-        for (int axis = 0; axis < 3; ++axis)
-          for (int side = 0; side < 2; ++side) {
-            std::array<std::int64_t, 3> j = i;
-            j[static_cast<std::size_t>(axis)] += side ? ratio : -ratio;
-            if (!cell_in_grid(j)) continue;
-            const std::uint64_t neighbour = grid.key(j[0], j[1], j[2]);
-            if (refined.count(neighbour) || coarse.count(neighbour)) continue;
-            face.clear();
-            face_triangles(side ? neighbour : cell, axis, face);
-            int in = 0, count = 0;
-            for (const auto& t : face)
-              for (std::uint64_t k : t) {
-                in += label.at(k);
-                ++count;
-              }
-            if (in == 0 || in == count) continue;
-            coarse.insert(neighbour);
-            grown.push_back(neighbour);
-          }
-      }
+      for (const std::vector<std::uint64_t>& found : chunk_grown)
+        for (std::uint64_t neighbour : found)
+          if (coarse.insert(neighbour).second) grown.push_back(neighbour);
       if (static_cast<std::int64_t>(coarse.size() + refined.size()) > options.max_cells)
         throw InvalidInput("the contouring grid needs more than " + std::to_string(options.max_cells) + " cells; choose a larger cell size",
                            "cell_size");
@@ -930,27 +1020,27 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         for (std::int64_t j = 0; j < ratio; ++j)
           for (std::int64_t i = 0; i < ratio; ++i) complex.emplace_back(offset_key(cell, i, j, k), 1);
     std::sort(complex.begin(), complex.end());
-    std::vector<std::array<std::uint64_t, 3>> face;
-    for (const auto& [low, size] : complex) {
+    march_cells(complex, [&](std::size_t k, std::uint64_t cell, std::vector<ContourPolygon>& out) {
+      const std::uint64_t low = complex[k].first;
+      const std::int64_t size = complex[k].second;
       bool transition = false;
       if (size == ratio)
         for (int axis = 0; axis < 3 && !transition; ++axis)
           for (int side = 0; side < 2 && !transition; ++side)
             transition = face_kind(side ? low + static_cast<std::uint64_t>(ratio) * unit[static_cast<std::size_t>(axis)] : low, axis) != FaceKind::Kuhn;
       if (!transition) {
-        march_cube(low, size);
-        continue;
+        march_cube(low, size, cell, out);
+        return;
       }
-      const auto cell = static_cast<std::uint64_t>(cell_of.size());
-      cell_of.push_back({low, size});
       const std::uint64_t centre = offset_key(low, ratio / 2, ratio / 2, ratio / 2);
+      std::vector<std::array<std::uint64_t, 3>> face;
       for (int axis = 0; axis < 3; ++axis)
         for (int side = 0; side < 2; ++side) {
           face.clear();
           face_triangles(side ? low + static_cast<std::uint64_t>(ratio) * unit[static_cast<std::size_t>(axis)] : low, axis, face);
-          for (const auto& t : face) march({centre, t[0], t[1], t[2]}, cell);
+          for (const auto& t : face) march({centre, t[0], t[1], t[2]}, cell, out);
         }
-    }
+    });
     stats.grid_cells = static_cast<std::int64_t>(complex.size());
     // Crossings of the edges the complex uses; those of the coarse grid's edges are kept.
     cross_new_edges();
@@ -976,6 +1066,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // Repair rounds and adaptations change a few percent of the faces: each self-intersection
   // test looks only at the pairs that involve a face the last tested mesh did not have.
   SelfIntersectionRecord self_intersection_record;
+  // The refinement's splits likewise: most edges of a contour made again have the same two ends.
+  SheetRefinementMemory refinement_memory;
   // Refines the coarse cells holding `beyond_points` and their neighbours; false if all were
   // refined already.
   // The cells to split are decided against the cells split before this call, not against the
@@ -1539,6 +1631,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       refinement.shortest_edge = 1e-3 * grid.h;
       refinement.inside = checked_inside;
       refinement.check_distance = 0.25 * reach;
+      refinement.memory = &refinement_memory;
       if (options.crease_angle_degrees > 0) refinement.branch_angle_degrees = std::min(options.crease_angle_degrees, 90.0);
       const std::size_t before = sheet_vertices.size();
       const SheetRefinementStats r = refine_to_sheets(result, sheet_vertices, sheet_crossing_from, refinement, &face_origin);

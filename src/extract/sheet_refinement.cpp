@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
 
 #include <Eigen/LU>
+#include <tbb/blocked_range.h>
+#include <tbb/concurrent_unordered_map.h>
 #include <tbb/parallel_for.h>
 
 #include "volspline/core/error.h"
@@ -33,7 +37,52 @@ struct EdgeSplit {
 // on two sheets that meet smoothly (a seam): the kind and, per end, the sheet point to use.
 enum class EdgeKind { None, Crease, Sheet, Seam, Across };
 
+bool same_sheet_point(const SheetPoint& a, const SheetPoint& b) {
+  return a.sheet == b.sheet && a.triangle == b.triangle && a.parameters == b.parameters && a.normal == b.normal;
+}
+
+bool same_sheet_vertex(const SheetVertex& a, const SheetVertex& b) {
+  return a.source == b.source && a.frozen == b.frozen && same_sheet_point(a.on[0], b.on[0]) && same_sheet_point(a.on[1], b.on[1]);
+}
+
 }  // namespace
+
+// Not anonymous: SheetRefinementMemory::State holds these types.
+namespace sheet_refinement_detail {
+
+// An edge's ends by their positions, in the order of their vertex numbers (+ 0.0 makes -0 and +0
+// one key).
+using RefinementEdgeEnds = std::array<double, 6>;
+
+struct RefinementEdgeEndsHash {
+  std::size_t operator()(const RefinementEdgeEnds& ends) const {
+    std::size_t h = 0;
+    for (const double c : ends) h = h * 0x9e3779b97f4a7c15ull + std::hash<double>{}(c);
+    return h;
+  }
+};
+
+}  // namespace sheet_refinement_detail
+
+struct SheetRefinementMemory::State {
+  struct Entry {
+    SheetVertex p, q;
+    bool found = false;
+    double distance = 0;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    SheetVertex vertex;
+  };
+  tbb::concurrent_unordered_map<sheet_refinement_detail::RefinementEdgeEnds, Entry, sheet_refinement_detail::RefinementEdgeEndsHash> splits;
+  std::atomic<std::size_t> reused{0};
+};
+
+SheetRefinementMemory::SheetRefinementMemory() : state_(std::make_unique<State>()) {}
+SheetRefinementMemory::~SheetRefinementMemory() = default;
+// A moved-from memory has no state; refine_to_sheets gives it an empty one.
+SheetRefinementMemory::SheetRefinementMemory(SheetRefinementMemory&&) noexcept = default;
+SheetRefinementMemory& SheetRefinementMemory::operator=(SheetRefinementMemory&&) noexcept = default;
+std::size_t SheetRefinementMemory::size() const { return state_ ? state_->splits.size() : 0; }
+std::size_t SheetRefinementMemory::reused() const { return state_ ? state_->reused.load() : 0; }
 
 std::optional<Eigen::Vector3d> sheet_crease_point(const SheetCrossingFrom& crossing, SheetPoint& a, SheetPoint& b, const Eigen::Vector3d& x0,
                                                   const Eigen::Vector3d& direction, double reach) {
@@ -114,6 +163,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
     return stats;
   };
   if (!crossing) return finish();
+  if (options.memory && !options.memory->state_) options.memory->state_ = std::make_unique<SheetRefinementMemory::State>();
   // Edges found within the tolerance (or whose sheet point was not found) are not tried again:
   // their ends do not move, so neither does the answer.
   std::unordered_set<std::uint64_t> settled;
@@ -273,93 +323,115 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
         if (verdict == kUnsharedUnresolved) ++stats.unresolved_edges;
       }
     }
+    // The split point of candidate e, if any (e.found, e.position, e.distance, e.vertex).
+    const auto split_edge = [&](EdgeSplit& e) {
+      const auto p = static_cast<int>(e.key >> 32), q = static_cast<int>(e.key & 0xffffffffu);
+      const SheetVertex &vp = vertices[static_cast<std::size_t>(p)], &vq = vertices[static_cast<std::size_t>(q)];
+      const Eigen::Vector3d &xp = mesh.positions[static_cast<std::size_t>(p)], &xq = mesh.positions[static_cast<std::size_t>(q)];
+      const double length = (xq - xp).norm();
+      const Eigen::Vector3d middle = 0.5 * (xp + xq);
+      const Shared shared = edge_kind(vp, vq);
+      if (shared.kind == EdgeKind::Crease) {
+        SheetVertex v = vp;
+        const std::optional<Eigen::Vector3d> x = sheet_crease_point(crossing, v.on[0], v.on[1], middle, xq - xp, 0.5 * length);
+        if (!x) return;
+        e.found = true;
+        e.position = *x;
+        e.distance = (*x - middle).norm();
+        e.vertex = v;
+        return;
+      }
+      // The point where the ends' two sheets meet, in the plane across their crease through the
+      // midpoint, if it is on the boundary (membership differs on the two sides of it along
+      // one of the bisectors of the normals).
+      auto split_at_crease = [&](SheetPoint a, SheetPoint b) {
+        const Eigen::Vector3d across = a.normal.normalized().cross(b.normal.normalized());
+        if (!(across.norm() > 1e-3)) return false;
+        const std::optional<Eigen::Vector3d> x = sheet_crease_point(crossing, a, b, middle, across, 0.5 * length);
+        if (!x) return false;
+        bool on_boundary = false;
+        for (const Eigen::Vector3d& bisector : {Eigen::Vector3d(a.normal.normalized() + b.normal.normalized()),
+                                                Eigen::Vector3d(a.normal.normalized() - b.normal.normalized())}) {
+          if (on_boundary || !(bisector.norm() > 1e-9)) continue;
+          const Eigen::Vector3d step = options.check_distance * bisector.normalized();
+          const std::optional<bool> plus = options.inside(*x + step), minus = options.inside(*x - step);
+          on_boundary = plus && minus && *plus != *minus;
+        }
+        if (!on_boundary) return false;
+        e.found = true;
+        e.position = *x;
+        e.distance = (*x - middle).norm();
+        e.vertex.on[0] = a;
+        e.vertex.on[1] = b;
+        e.vertex.source = vp.source;
+        return true;
+      };
+      if (shared.kind == EdgeKind::Across) {
+        split_at_crease(shared.p, shared.q);
+        return;
+      }
+      const SheetPoint &sp = shared.p, &sq = shared.q;
+      Eigen::Vector3d normal = sp.normal + (sp.normal.dot(sq.normal) < 0 ? -sq.normal : sq.normal);
+      if (!(normal.norm() > 1e-12)) normal = sp.normal;
+      if (!(normal.norm() > 1e-12)) return;
+      normal.normalize();
+      const Eigen::Vector3d a = middle - 0.5 * length * normal, b = middle + 0.5 * length * normal;
+      // One sheet: Newton from the mean of the ends' parameters. A seam between two sheets
+      // that meet smoothly (patches of one surface): each end's sheet from that end.
+      std::optional<SheetCrossing> c;
+      SheetPoint on = sp;
+      // Where the mean fails (a sheet closed on itself: a tube's seam w = 0 ~ 1, where the
+      // mean lies on the far side), from each end's own parameters.
+      if (shared.kind == EdgeKind::Sheet) c = crossing(sp.triangle, 0.5 * (sp.parameters + sq.parameters), 0.5, a, b);
+      for (int end = 0; end < 2 && !(c && c->lambda >= 0 && c->lambda <= 1); ++end) {
+        on = end == 0 ? sp : sq;
+        c = crossing(on.triangle, on.parameters, 0.5, a, b);
+      }
+      if (!c || !(c->lambda >= 0 && c->lambda <= 1)) return;
+      const Eigen::Vector3d position = a + c->lambda * (b - a);
+      if (shared.kind == EdgeKind::Seam && std::abs(sp.normal.normalized().dot(sq.normal.normalized())) < seam_cos) {
+        // A seam or a crease: the point must be on the boundary, not on a sheet's interior
+        // part. (Checking every split alike, for sheets that run on inside the solid past
+        // where another cuts them off, cost 94,000 more membership queries on Fig. 4, mostly
+        // outside proofs: 7.4 s instead of 0.15 s; those edges are caught by the verification
+        // of extract/image_contouring.h instead.)
+        const Eigen::Vector3d step = options.check_distance * c->normal.normalized();
+        const std::optional<bool> plus = options.inside(position + step), minus = options.inside(position - step);
+        if (!plus || !minus || *plus == *minus) {
+          if (options.split_across_creases) split_at_crease(sp, sq);
+          return;
+        }
+      }
+      e.found = true;
+      e.position = position;
+      on.parameters << c->parameters, c->extra;
+      on.normal = c->normal;
+      e.vertex.on[0] = on;
+      e.vertex.source = vp.source;
+      e.distance = (e.position - middle).norm();
+    };
+    SheetRefinementMemory::State* memory = options.memory ? options.memory->state_.get() : nullptr;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
         EdgeSplit& e = candidates[i];
-        const auto p = static_cast<int>(e.key >> 32), q = static_cast<int>(e.key & 0xffffffffu);
-        const SheetVertex &vp = vertices[static_cast<std::size_t>(p)], &vq = vertices[static_cast<std::size_t>(q)];
-        const Eigen::Vector3d &xp = mesh.positions[static_cast<std::size_t>(p)], &xq = mesh.positions[static_cast<std::size_t>(q)];
-        const double length = (xq - xp).norm();
-        const Eigen::Vector3d middle = 0.5 * (xp + xq);
-        const Shared shared = edge_kind(vp, vq);
-        if (shared.kind == EdgeKind::Crease) {
-          SheetVertex v = vp;
-          const std::optional<Eigen::Vector3d> x = sheet_crease_point(crossing, v.on[0], v.on[1], middle, xq - xp, 0.5 * length);
-          if (!x) continue;
-          e.found = true;
-          e.position = *x;
-          e.distance = (*x - middle).norm();
-          e.vertex = v;
+        if (!memory) {
+          split_edge(e);
           continue;
         }
-        // The point where the ends' two sheets meet, in the plane across their crease through the
-        // midpoint, if it is on the boundary (membership differs on the two sides of it along
-        // one of the bisectors of the normals).
-        auto split_at_crease = [&](SheetPoint a, SheetPoint b) {
-          const Eigen::Vector3d across = a.normal.normalized().cross(b.normal.normalized());
-          if (!(across.norm() > 1e-3)) return false;
-          const std::optional<Eigen::Vector3d> x = sheet_crease_point(crossing, a, b, middle, across, 0.5 * length);
-          if (!x) return false;
-          bool on_boundary = false;
-          for (const Eigen::Vector3d& bisector : {Eigen::Vector3d(a.normal.normalized() + b.normal.normalized()),
-                                                  Eigen::Vector3d(a.normal.normalized() - b.normal.normalized())}) {
-            if (on_boundary || !(bisector.norm() > 1e-9)) continue;
-            const Eigen::Vector3d step = options.check_distance * bisector.normalized();
-            const std::optional<bool> plus = options.inside(*x + step), minus = options.inside(*x - step);
-            on_boundary = plus && minus && *plus != *minus;
-          }
-          if (!on_boundary) return false;
-          e.found = true;
-          e.position = *x;
-          e.distance = (*x - middle).norm();
-          e.vertex.on[0] = a;
-          e.vertex.on[1] = b;
-          e.vertex.source = vp.source;
-          return true;
-        };
-        if (shared.kind == EdgeKind::Across) {
-          split_at_crease(shared.p, shared.q);
+        const auto p = static_cast<std::size_t>(e.key >> 32), q = static_cast<std::size_t>(e.key & 0xffffffffu);
+        const Eigen::Vector3d &xp = mesh.positions[p], &xq = mesh.positions[q];
+        const sheet_refinement_detail::RefinementEdgeEnds ends{xp.x() + 0.0, xp.y() + 0.0, xp.z() + 0.0, xq.x() + 0.0, xq.y() + 0.0, xq.z() + 0.0};
+        if (const auto it = memory->splits.find(ends);
+            it != memory->splits.end() && same_sheet_vertex(it->second.p, vertices[p]) && same_sheet_vertex(it->second.q, vertices[q])) {
+          e.found = it->second.found;
+          e.distance = it->second.distance;
+          e.position = it->second.position;
+          e.vertex = it->second.vertex;
+          ++memory->reused;
           continue;
         }
-        const SheetPoint &sp = shared.p, &sq = shared.q;
-        Eigen::Vector3d normal = sp.normal + (sp.normal.dot(sq.normal) < 0 ? -sq.normal : sq.normal);
-        if (!(normal.norm() > 1e-12)) normal = sp.normal;
-        if (!(normal.norm() > 1e-12)) continue;
-        normal.normalize();
-        const Eigen::Vector3d a = middle - 0.5 * length * normal, b = middle + 0.5 * length * normal;
-        // One sheet: Newton from the mean of the ends' parameters. A seam between two sheets
-        // that meet smoothly (patches of one surface): each end's sheet from that end.
-        std::optional<SheetCrossing> c;
-        SheetPoint on = sp;
-        // Where the mean fails (a sheet closed on itself: a tube's seam w = 0 ~ 1, where the
-        // mean lies on the far side), from each end's own parameters.
-        if (shared.kind == EdgeKind::Sheet) c = crossing(sp.triangle, 0.5 * (sp.parameters + sq.parameters), 0.5, a, b);
-        for (int end = 0; end < 2 && !(c && c->lambda >= 0 && c->lambda <= 1); ++end) {
-          on = end == 0 ? sp : sq;
-          c = crossing(on.triangle, on.parameters, 0.5, a, b);
-        }
-        if (!c || !(c->lambda >= 0 && c->lambda <= 1)) continue;
-        const Eigen::Vector3d position = a + c->lambda * (b - a);
-        if (shared.kind == EdgeKind::Seam && std::abs(sp.normal.normalized().dot(sq.normal.normalized())) < seam_cos) {
-          // A seam or a crease: the point must be on the boundary, not on a sheet's interior
-          // part. (Checking every split alike, for sheets that run on inside the solid past
-          // where another cuts them off, cost 94,000 more membership queries on Fig. 4, mostly
-          // outside proofs: 7.4 s instead of 0.15 s; those edges are caught by the verification
-          // of extract/image_contouring.h instead.)
-          const Eigen::Vector3d step = options.check_distance * c->normal.normalized();
-          const std::optional<bool> plus = options.inside(position + step), minus = options.inside(position - step);
-          if (!plus || !minus || *plus == *minus) {
-            if (options.split_across_creases) split_at_crease(sp, sq);
-            continue;
-          }
-        }
-        e.found = true;
-        e.position = position;
-        on.parameters << c->parameters, c->extra;
-        on.normal = c->normal;
-        e.vertex.on[0] = on;
-        e.vertex.source = vp.source;
-        e.distance = (e.position - middle).norm();
+        split_edge(e);
+        memory->splits.emplace(ends, SheetRefinementMemory::State::Entry{vertices[p], vertices[q], e.found, e.distance, e.position, e.vertex});
       }
     });
     // A split must not turn a face over: each face next to the edge, split at the new point

@@ -3,10 +3,12 @@
 // the mesh stays closed and consistently oriented, and the enclosed volume converges to 4/3 pi
 // from below as an inscribed polyhedron's must.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <optional>
 #include <set>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -101,6 +103,63 @@ TEST(SheetRefinement, AnInscribedOctahedronIsRefinedOntoTheSphereToTheTolerance)
   const double volume = enclosed_volume(mesh), ball = 4.0 / 3 * std::numbers::pi;
   EXPECT_LT(volume, ball);
   EXPECT_GT(volume, ball - 4 * std::numbers::pi * (4.0 / 3) * options.tolerance);
+}
+
+// A memory of splits (SheetRefinementMemory) changes nothing but the work: a call with it gives
+// exactly the mesh of a call without it; called again on the same mesh it asks the sheet
+// nothing; and where an end differs (its source here) the edges at it are solved again, so the
+// result is again the one without memory.
+TEST(SheetRefinement, AMemoryOfSplitsReusesEqualEdgesOnlyAndChangesNoResult) {
+  std::atomic<int> asked{0};
+  const SheetCrossingFrom crossing = [&](std::size_t, const Eigen::Vector4d& start, double lambda, const Eigen::Vector3d& a,
+                                         const Eigen::Vector3d& b) {
+    ++asked;
+    return sphere_crossing(start, lambda, a, b);
+  };
+  const auto refined = [&](SheetRefinementMemory* memory, int source_of_vertex_0) {
+    std::vector<SheetVertex> vertices;
+    TriangleMesh mesh = octahedron(vertices);
+    vertices[0].source = source_of_vertex_0;
+    SheetRefinementOptions options;
+    options.tolerance = 1e-3;
+    options.memory = memory;
+    std::vector<std::size_t> origin;
+    refine_to_sheets(mesh, vertices, crossing, options, &origin);
+    return std::tuple{mesh, vertices, origin};
+  };
+  const auto same = [](const auto& x, const auto& y) {
+    const auto& [mx, vx, ox] = x;
+    const auto& [my, vy, oy] = y;
+    if (mx.positions != my.positions || mx.triangles != my.triangles || mx.parts != my.parts || ox != oy || vx.size() != vy.size()) return false;
+    for (std::size_t v = 0; v < vx.size(); ++v)
+      if (vx[v].source != vy[v].source || vx[v].on[0].parameters != vy[v].on[0].parameters || vx[v].on[0].normal != vy[v].on[0].normal)
+        return false;
+    return true;
+  };
+  const auto plain = refined(nullptr, 0);
+  const int plain_asked = asked.exchange(0);
+  ASSERT_GT(plain_asked, 0);
+  SheetRefinementMemory memory;
+  EXPECT_TRUE(same(refined(&memory, 0), plain));
+  EXPECT_EQ(asked.exchange(0), plain_asked);
+  EXPECT_EQ(memory.reused(), 0u);
+  const std::size_t remembered = memory.size();
+  EXPECT_GT(remembered, 0u);
+  EXPECT_TRUE(same(refined(&memory, 0), plain));
+  EXPECT_EQ(asked.exchange(0), 0);
+  EXPECT_EQ(memory.reused(), remembered);
+  // Vertex 0 from another source: its edges' splits (which carry the source on) are not reused.
+  const auto other = refined(nullptr, 7);
+  asked = 0;
+  EXPECT_TRUE(same(refined(&memory, 7), other));
+  EXPECT_GT(asked.load(), 0);
+  EXPECT_LT(asked.load(), plain_asked);
+  // A moved-from memory is empty and usable.
+  SheetRefinementMemory moved = std::move(memory);
+  EXPECT_GT(moved.size(), 0u);
+  EXPECT_EQ(memory.size(), 0u);  // NOLINT(bugprone-use-after-move): the documented state
+  EXPECT_TRUE(same(refined(&memory, 0), plain));
+  EXPECT_GT(memory.size(), 0u);
 }
 
 TEST(SheetRefinement, EdgesAcrossTwoSheetsAtACreaseAreCountedNotSplit) {

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -56,6 +57,34 @@ struct SheetVertex {
 std::optional<Eigen::Vector3d> sheet_crease_point(const SheetCrossingFrom& crossing, SheetPoint& a, SheetPoint& b, const Eigen::Vector3d& x0,
                                                   const Eigen::Vector3d& direction, double reach);
 
+struct SheetRefinementStats;
+struct SheetRefinementOptions;
+
+/// The splits refine_to_sheets computed, kept for later calls on meshes that share edges with
+/// this one. The contouring of swept envelopes makes its contour again after every crease repair
+/// and grid adaptation, and most edges come back with the same two ends; an edge's split point
+/// depends on its ends alone (positions, sheet points, source, in the order of their vertex
+/// numbers) and on the options, so an edge met again reuses it (docs/envelopes.md, "Checks that
+/// redo only what changed"). Use one memory only with one `crossing` and one set of options.
+/// Safe to fill from the parallel loops of one call; a moved-from memory is empty again.
+class SheetRefinementMemory {
+ public:
+  SheetRefinementMemory();
+  ~SheetRefinementMemory();
+  SheetRefinementMemory(SheetRefinementMemory&&) noexcept;
+  SheetRefinementMemory& operator=(SheetRefinementMemory&&) noexcept;
+  /// Edges remembered.
+  std::size_t size() const;
+  /// Edges whose split came from memory, over the memory's life.
+  std::size_t reused() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+  friend SheetRefinementStats refine_to_sheets(TriangleMesh&, std::vector<SheetVertex>&, const SheetCrossingFrom&,
+                                               const SheetRefinementOptions&, std::vector<std::size_t>*);
+};
+
 struct SheetRefinementOptions {
   /// Largest distance (absolute) allowed between an edge's midpoint and the sheet.
   double tolerance = 1e-3;
@@ -84,6 +113,8 @@ struct SheetRefinementOptions {
   /// Off by default: on the paper's examples it made more faces intersect than it resolved
   /// (docs/envelopes.md).
   bool split_across_creases = false;
+  /// Splits of earlier calls to reuse, and where this call's are kept (optional).
+  SheetRefinementMemory* memory = nullptr;
 };
 
 struct SheetRefinementStats {
