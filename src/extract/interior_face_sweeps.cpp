@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <tuple>
 
 #include "volspline/analysis/sub_jacobians.h"
 #include "volspline/core/error.h"
@@ -85,13 +86,82 @@ bool same_face_map(const BSplineVolume& f, const BSplineVolume& g, const FaceSym
   return true;
 }
 
-}  // namespace
+// Whether f = g o psi for 2-variate maps (a square's two free parameters): equal knots and
+// homogeneous control points (within 1e-12 of their scale) once g's net is permuted.
+bool same_square_map(const BSplineSurface& f, const BSplineSurface& g, const FaceSymmetry& symmetry) {
+  if (f.is_rational() != g.is_rational() || f.dimension() != g.dimension()) return false;
+  const int g0 = symmetry.swap ? 1 : 0, g1 = symmetry.swap ? 0 : 1;
+  if (!same_knots(f.knot_vector(0), g.knot_vector(g0), symmetry.reverse0) || !same_knots(f.knot_vector(1), g.knot_vector(g1), symmetry.reverse1))
+    return false;
+  const auto n = f.num_control_points();
+  const auto m = g.num_control_points();
+  if (n[0] != m[static_cast<std::size_t>(g0)] || n[1] != m[static_cast<std::size_t>(g1)]) return false;
+  const std::vector<double>& a = f.homogeneous();
+  const std::vector<double>& b = g.homogeneous();
+  double scale = 0;
+  for (double x : a) scale = std::max(scale, std::abs(x));
+  for (double x : b) scale = std::max(scale, std::abs(x));
+  const double tolerance = 1e-12 * std::max(scale, 1e-300);
+  const auto size = static_cast<std::size_t>(f.coefficient_size());
+  for (int j = 0; j < n[1]; ++j)
+    for (int i = 0; i < n[0]; ++i) {
+      const int i0 = symmetry.reverse0 ? n[0] - 1 - i : i;
+      const int i1 = symmetry.reverse1 ? n[1] - 1 - j : j;
+      const std::array<int, 2> from = symmetry.swap ? std::array<int, 2>{i1, i0} : std::array<int, 2>{i0, i1};
+      const auto p = static_cast<std::size_t>(f.linear_index({i, j})) * size;
+      const auto q = static_cast<std::size_t>(g.linear_index(from)) * size;
+      for (std::size_t c = 0; c < size; ++c)
+        if (std::abs(a[p + c] - b[q + c]) > tolerance) return false;
+    }
+  return true;
+}
 
-std::vector<PatchFace> interior_face_sweeps(const std::vector<BSplineHypervolume>& patches) {
+void check_in_r3(const std::vector<BSplineHypervolume>& patches) {
   for (std::size_t p = 0; p < patches.size(); ++p)
     if (patches[p].dimension() != 3)
       throw InvalidInput("expected control points in R^3, got dimension " + std::to_string(patches[p].dimension()),
                          "patches[" + std::to_string(p) + "]");
+}
+
+}  // namespace
+
+std::vector<RepeatedSquare> duplicate_squares(const std::vector<BSplineHypervolume>& patches) {
+  check_in_r3(patches);
+  struct Square {
+    PatchSquare id;
+    BSplineSurface map;
+  };
+  std::vector<Square> squares;
+  for (std::size_t p = 0; p < patches.size(); ++p)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b)
+        for (int at_max = 0; at_max < 4; ++at_max) {
+          const int bits = at_max & 1 ? 1 << a : 0, more = at_max & 2 ? 1 << b : 0;
+          const double value_a = at_max & 1 ? patches[p].domain_max(a) : patches[p].domain_min(a);
+          const double value_b = at_max & 2 ? patches[p].domain_max(b) : patches[p].domain_min(b);
+          // Restricted along b first, so that a keeps its index.
+          squares.push_back({{static_cast<int>(p), (1 << a) | (1 << b), bits | more},
+                             restrict_to_iso(restrict_to_iso(patches[p], b, value_b), a, value_a)});
+        }
+  std::sort(squares.begin(), squares.end(), [](const Square& x, const Square& y) {
+    return std::tie(x.id.patch, x.id.fixed, x.id.at_max) < std::tie(y.id.patch, y.id.fixed, y.id.at_max);
+  });
+  std::vector<RepeatedSquare> out;
+  std::vector<char> repeat(squares.size(), 0);
+  for (std::size_t g = 0; g < squares.size(); ++g)
+    for (std::size_t f = 0; f < g && !repeat[g]; ++f) {
+      if (repeat[f]) continue;
+      for (int s = 0; s < 8 && !repeat[g]; ++s)
+        if (same_square_map(squares[g].map, squares[f].map, FaceSymmetry{(s & 1) != 0, (s & 2) != 0, (s & 4) != 0})) {
+          repeat[g] = 1;
+          out.push_back({squares[g].id, squares[f].id});
+        }
+    }
+  return out;
+}
+
+std::vector<PatchFace> interior_face_sweeps(const std::vector<BSplineHypervolume>& patches) {
+  check_in_r3(patches);
   struct Face {
     PatchFace id;
     BSplineVolume sweep;

@@ -4,6 +4,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -13,6 +14,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/concurrent_unordered_map.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "volspline/core/error.h"
 #include "volspline/mesh/mesh_checks.h"
@@ -166,7 +168,9 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
   if (options.memory && !options.memory->state_) options.memory->state_ = std::make_unique<SheetRefinementMemory::State>();
   // Edges found within the tolerance (or whose sheet point was not found) are not tried again:
   // their ends do not move, so neither does the answer.
-  std::unordered_set<std::uint64_t> settled;
+  // Sorted; the edges settled in the current round are collected in `newly_settled` and merged
+  // in before the next round looks.
+  std::vector<std::uint64_t> settled, newly_settled, merged;
   const double seam_cos = std::cos(options.seam_angle_degrees * 3.14159265358979323846 / 180);
   const double checked_seam_cos = std::cos(80 * 3.14159265358979323846 / 180);
   struct Shared {
@@ -279,9 +283,20 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
         const auto& t = mesh.triangles[f];
         for (int j = 0; j < 3; ++j) keys.push_back(refinement_edge_key(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]));
       }
-      std::sort(keys.begin(), keys.end());
+      tbb::parallel_sort(keys.begin(), keys.end());
       keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-      keys.erase(std::remove_if(keys.begin(), keys.end(), [&](std::uint64_t key) { return settled.count(key) > 0; }), keys.end());
+      if (!newly_settled.empty()) {
+        tbb::parallel_sort(newly_settled.begin(), newly_settled.end());
+        merged.resize(settled.size() + newly_settled.size());
+        std::merge(settled.begin(), settled.end(), newly_settled.begin(), newly_settled.end(), merged.begin());
+        settled.swap(merged);
+        newly_settled.clear();
+      }
+      if (!settled.empty()) {
+        merged.clear();
+        std::set_difference(keys.begin(), keys.end(), settled.begin(), settled.end(), std::back_inserter(merged));
+        keys.swap(merged);
+      }
       enum : char { kFrozen, kUnshared, kUnsharedUnresolved, kShort, kWithinEstimate, kCandidate };
       verdicts.resize(keys.size());
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, keys.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -317,7 +332,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
           candidates.push_back(e);
           continue;
         }
-        settled.insert(key);
+        newly_settled.push_back(key);
         if (verdict == kWithinEstimate) continue;
         stats.unverified_edges.push_back({static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)});
         if (verdict == kUnsharedUnresolved) ++stats.unresolved_edges;
@@ -568,11 +583,11 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
         if (arc_deviation(p, q, vertices[static_cast<std::size_t>(p)].on[0].normal, vertices[static_cast<std::size_t>(q)].on[0].normal) >
             options.tolerance)
           ++stats.unresolved_edges;
-        settled.insert(e.key);
+        newly_settled.push_back(e.key);
         continue;
       }
       if (e.distance <= options.tolerance) {
-        settled.insert(e.key);
+        newly_settled.push_back(e.key);
         continue;
       }
       ++above;

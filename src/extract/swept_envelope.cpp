@@ -1,6 +1,7 @@
 #include "volspline/extract/swept_envelope.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <unordered_map>
@@ -287,11 +288,23 @@ void check_trimming_options(const SweptEnvelopeOptions& options) {
 }
 
 // The superset without the triangles of interior face sweeps (interior_face_sweeps): the folds
-// of those 3-faces and their squares at t = 0 and 1, told apart by their sheets. Vertices are
-// kept (unused ones are harmless).
+// of those 3-faces and their squares at t = 0 and 1, told apart by their sheets; and without the
+// repeats of squares (duplicate_squares) whose first is kept. Vertices are kept (unused ones are
+// harmless).
 SweptEnvelope without_interior_face_sweeps(const std::vector<BSplineHypervolume>& patches, const SweptEnvelope& superset) {
   const std::vector<PatchFace> interior = interior_face_sweeps(patches);
-  if (interior.empty() || superset.sheets.size() != superset.mesh.num_triangles()) return superset;
+  const std::vector<RepeatedSquare> repeated = duplicate_squares(patches);
+  if ((interior.empty() && repeated.empty()) || superset.sheets.size() != superset.mesh.num_triangles()) return superset;
+  // A square at t = 0 or 1 of an interior face is dropped with the face.
+  const auto interior_square = [&](const PatchSquare& q) {
+    if (!(q.fixed & (1 << 3))) return false;
+    for (int c = 0; c < 3; ++c)
+      if (q.fixed == ((1 << c) | (1 << 3)) && listed_face(interior, q.patch, c, (q.at_max >> c) & 1)) return true;
+    return false;
+  };
+  std::vector<PatchSquare> dropped_repeats;
+  for (const RepeatedSquare& r : repeated)
+    if (!interior_square(r.same_as)) dropped_repeats.push_back(r.square);
   SweptEnvelope out = superset;
   out.mesh.triangles.clear();
   out.mesh.parts.clear();
@@ -301,12 +314,21 @@ SweptEnvelope without_interior_face_sweeps(const std::vector<BSplineHypervolume>
     const auto v0 = static_cast<std::size_t>(superset.mesh.triangles[t][0]);
     const int patch = superset.patches[v0];
     const auto& s = patches[static_cast<std::size_t>(patch)];
+    const auto at_max = [&](int d) {
+      const double value = d < 3 ? superset.mesh.parameters[v0][d] : superset.times[v0];
+      return value > 0.5 * (s.domain_min(d) + s.domain_max(d)) ? 1 : 0;
+    };
     bool drop = false;
     for (int c = 0; c < 3 && !drop; ++c) {
       const bool on_face = sheet.fold ? sheet.fixed == (1 << c) : sheet.fixed == ((1 << c) | (1 << 3));
       if (!on_face) continue;
-      const int end = superset.mesh.parameters[v0][c] > 0.5 * (s.domain_min(c) + s.domain_max(c)) ? 1 : 0;
-      drop = listed_face(interior, patch, c, end);
+      drop = listed_face(interior, patch, c, at_max(c));
+    }
+    if (!drop && !sheet.fold && std::popcount(static_cast<unsigned>(sheet.fixed)) == 2) {
+      PatchSquare square{patch, sheet.fixed, 0};
+      for (int d = 0; d < 4; ++d)
+        if ((sheet.fixed >> d) & 1) square.at_max |= at_max(d) << d;
+      drop = std::find(dropped_repeats.begin(), dropped_repeats.end(), square) != dropped_repeats.end();
     }
     if (drop) continue;
     out.mesh.triangles.push_back(superset.mesh.triangles[t]);

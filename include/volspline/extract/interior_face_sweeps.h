@@ -1,7 +1,8 @@
 #pragma once
 // Face sweeps inside the swept volume: a face that two generator patches share from opposite
 // sides (the paper's torus of four quarter patches, a closed periodic direction) is interior to
-// the generator, so its sweep is interior to the swept volume and bounds nothing.
+// the generator, so its sweep is interior to the swept volume and bounds nothing. Squares that
+// two patches (or the two ends of a closed direction) share are one sheet listed twice.
 // docs/envelopes.md, "Faces the generator's patches share".
 #include <vector>
 
@@ -27,5 +28,31 @@ struct PatchFace {
 /// zeros is an interior point of the moving generator at each t, so its image is interior to S.
 /// Sorted by (patch, direction, end). \throw InvalidInput if a patch does not map into R^3.
 std::vector<PatchFace> interior_face_sweeps(const std::vector<BSplineHypervolume>& patches);
+
+/// One square (2-face) of a 4-variate patch: the two parameters set in `fixed` (bit d: u, v, w,
+/// t) at their domain maximum where the same bit of `at_max` is set, at the minimum otherwise.
+struct PatchSquare {
+  int patch = 0;
+  int fixed = 0;
+  int at_max = 0;
+  friend bool operator==(const PatchSquare&, const PatchSquare&) = default;
+};
+
+/// A square that repeats an earlier one as a map (`same_as`: the first such, itself no repeat).
+struct RepeatedSquare {
+  PatchSquare square;
+  PatchSquare same_as;
+  friend bool operator==(const RepeatedSquare&, const RepeatedSquare&) = default;
+};
+
+/// The squares that repeat an earlier square as a map (equal knot vectors and homogeneous control
+/// points up to 1e-12 of their scale, after one of the eight symmetries of the two free
+/// parameters), in the order (patch, fixed, at_max). Two patches sharing a face share the
+/// squares its edges sweep (the torus's quarters along their cross-sections), and a closed
+/// direction makes a patch's squares at its two ends one (the torus's seam v = 0 ~ 1). Each such
+/// square is one sheet of the superset twice over; the trimming needs each sheet once
+/// (docs/envelopes.md, "Faces the generator's patches share"). \throw InvalidInput if a patch
+/// does not map into R^3.
+std::vector<RepeatedSquare> duplicate_squares(const std::vector<BSplineHypervolume>& patches);
 
 }  // namespace volspline
