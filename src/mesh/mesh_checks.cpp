@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <tbb/parallel_sort.h>
 
 #include "volspline/core/error.h"
 
@@ -97,7 +98,7 @@ EdgeStatistics edge_statistics(const TriangleMesh& mesh) {
       if (a != b) uses.push_back(edge_key(a, b));
     }
   }
-  std::sort(uses.begin(), uses.end());
+  tbb::parallel_sort(uses.begin(), uses.end());
 
   EdgeStatistics stats;
   for (std::size_t begin = 0; begin < uses.size();) {
