@@ -426,7 +426,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
       e.distance = (e.position - middle).norm();
     };
     SheetRefinementMemory::State* memory = options.memory ? options.memory->state_.get() : nullptr;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 4), [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
         EdgeSplit& e = candidates[i];
         if (!memory) {
