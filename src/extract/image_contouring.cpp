@@ -222,13 +222,29 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   }
 
   // The (coarse) cells within `reach` of a superset triangle (closed boxes: a point on a cell face
-  // counts for both cells). Blocks of triangles are listed in parallel and merged (sorted, unique)
-  // after each block, so that the budget check bounds the memory as a serial loop would.
+  // counts for both cells), sorted and distinct. Blocks of triangles are listed in parallel; a
+  // block whose listings (with repeats, all threads together) pass the budget stops and is listed
+  // again serially, merged whenever its listings pass the budget, so that memory stays within a
+  // few times the budget however fine the grid; the budget counts distinct cells.
   std::vector<std::uint64_t> cell_list;
-  // Set when one thread alone has listed more distinct cells than the budget.
-  std::atomic<bool> over_budget{false};
   const auto max_listed = static_cast<std::size_t>(options.max_cells);
-  const auto list_cells_of = [&](const ContourTriangle& t, std::vector<std::uint64_t>& out) {
+  std::atomic<std::size_t> listed_in_block{0};
+  std::atomic<bool> block_full{false};
+  // Merges sorted-or-not `part` into the sorted, distinct `cell_list`; throws past the budget.
+  const auto merge_cells = [&](std::vector<std::uint64_t>& part) {
+    tbb::parallel_sort(part.begin(), part.end());
+    part.erase(std::unique(part.begin(), part.end()), part.end());
+    const auto middle = static_cast<std::ptrdiff_t>(cell_list.size());
+    cell_list.insert(cell_list.end(), part.begin(), part.end());
+    std::inplace_merge(cell_list.begin(), cell_list.begin() + middle, cell_list.end());
+    cell_list.erase(std::unique(cell_list.begin(), cell_list.end()), cell_list.end());
+    part.clear();
+    if (cell_list.size() > max_listed)
+      throw InvalidInput("the contouring grid needs more than " + std::to_string(options.max_cells) + " cells; choose a larger cell size",
+                         "cell_size");
+  };
+  // Lists triangle t's cells into `out`; false if the block filled up (in parallel listing).
+  const auto list_cells_of = [&](const ContourTriangle& t, std::vector<std::uint64_t>& out, bool parallel) {
     const CGAL::Bbox_3 b = t.bbox();
     std::array<std::int64_t, 3> first{}, last{};
     for (int d = 0; d < 3; ++d) {
@@ -239,7 +255,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     const bool small = last[0] - first[0] <= 2 && last[1] - first[1] <= 2 && last[2] - first[2] <= 2;
     for (std::int64_t k = first[2]; k <= last[2]; ++k)
       for (std::int64_t j = first[1]; j <= last[1]; ++j) {
-        if (over_budget.load(std::memory_order_relaxed)) return;
+        if (parallel && block_full.load(std::memory_order_relaxed)) return false;
         for (std::int64_t i = first[0]; i <= last[0]; ++i) {
           if (!small) {
             const Eigen::Vector3d c = grid.origin + coarse_h * Eigen::Vector3d(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k));
@@ -248,32 +264,39 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
               continue;
           }
           out.push_back(grid.key(ratio * i, ratio * j, ratio * k));
-          if (out.size() > 4 * max_listed) {
-            std::sort(out.begin(), out.end());
-            out.erase(std::unique(out.begin(), out.end()), out.end());
-            if (out.size() > max_listed) {
-              over_budget = true;
-              return;
-            }
+          constexpr std::size_t kCounted = 4096;
+          if (!parallel) {
+            if (out.size() > max_listed) merge_cells(out);
+          } else if (out.size() % kCounted == 0 && listed_in_block.fetch_add(kCounted) + kCounted > max_listed) {
+            block_full = true;
+            return false;
           }
         }
       }
+    return true;
   };
   constexpr std::size_t kListingBlock = 1 << 15;
   for (std::size_t block = 0; block < triangles.size(); block += kListingBlock) {
     const std::size_t block_end = std::min(triangles.size(), block + kListingBlock);
-    tbb::enumerable_thread_specific<std::vector<std::uint64_t>> listed;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(block, block_end, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      std::vector<std::uint64_t>& out = listed.local();
-      for (std::size_t t = r.begin(); t != r.end() && !over_budget.load(std::memory_order_relaxed); ++t) list_cells_of(triangles[t], out);
-    });
-    if (!over_budget)
-      for (const std::vector<std::uint64_t>& part : listed) cell_list.insert(cell_list.end(), part.begin(), part.end());
-    tbb::parallel_sort(cell_list.begin(), cell_list.end());
-    cell_list.erase(std::unique(cell_list.begin(), cell_list.end()), cell_list.end());
-    if (over_budget || static_cast<std::int64_t>(cell_list.size()) > options.max_cells)
-      throw InvalidInput("the contouring grid needs more than " + std::to_string(options.max_cells) + " cells; choose a larger cell size",
-                         "cell_size");
+    listed_in_block = 0;
+    block_full = false;
+    {
+      tbb::enumerable_thread_specific<std::vector<std::uint64_t>> listed;
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(block, block_end, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::vector<std::uint64_t>& out = listed.local();
+        for (std::size_t t = r.begin(); t != r.end(); ++t)
+          if (!list_cells_of(triangles[t], out, true)) return;
+      });
+      if (!block_full) {
+        std::vector<std::uint64_t> part;
+        for (const std::vector<std::uint64_t>& listing : listed) part.insert(part.end(), listing.begin(), listing.end());
+        merge_cells(part);
+        continue;
+      }
+    }
+    std::vector<std::uint64_t> part;
+    for (std::size_t t = block; t < block_end; ++t) list_cells_of(triangles[t], part, false);
+    merge_cells(part);
   }
   std::unordered_set<std::uint64_t> cells(cell_list.begin(), cell_list.end());
   cell_list.clear();

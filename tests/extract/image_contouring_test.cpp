@@ -199,6 +199,32 @@ TEST(ImageContouring, RefusesBadOptions) {
   EXPECT_THROW(contour_image_boundary(superset, {1.0, 2.0}, inside), InvalidInput);
 }
 
+// The cell budget counts distinct cells: a superset whose every triangle is listed twenty times
+// (its cells listed twenty times over, far past a budget equal to the plain run's cells) is contoured
+// as the plain superset is, while a budget of half the plain run's cells is refused.
+TEST(ImageContouring, TheCellBudgetCountsDistinctCells) {
+  const TriangleMesh superset = contour_sphere_and_inner_sheet();
+  const ImageMembershipTest inside = [](const Eigen::Vector3d& x) { return std::optional<bool>(x.squaredNorm() <= 1); };
+  ImageContouringOptions options;
+  options.cell_size = 0.04;
+  const TrimmedBoundary plain = contour_image_boundary(superset, {}, inside, options);
+  ASSERT_GT(plain.stats.grid_cells, 500);
+  TriangleMesh repeated = superset;
+  for (int copy = 1; copy < 20; ++copy)
+    for (std::size_t f = 0; f < superset.num_triangles(); ++f) {
+      const auto& t = superset.triangles[f];
+      repeated.add_triangle(t[0], t[1], t[2], superset.parts[f]);
+    }
+  options.max_cells = plain.stats.grid_cells;
+  const TrimmedBoundary again = contour_image_boundary(repeated, {}, inside, options);
+  EXPECT_EQ(again.stats.grid_cells, plain.stats.grid_cells);
+  EXPECT_TRUE(again.stats.closed);
+  EXPECT_TRUE(again.stats.self_intersection_free);
+  EXPECT_NEAR(again.stats.volume, plain.stats.volume, 1e-9 * plain.stats.volume);
+  options.max_cells = plain.stats.grid_cells / 2;
+  EXPECT_THROW(contour_image_boundary(repeated, {}, inside, options), InvalidInput);
+}
+
 // Checks every trimmed envelope must pass: one closed, oriented surface free of
 // self-intersections; each vertex on the superset to the tolerance (where a grid edge crosses a
 // superset triangle, or found by bisection where the boundary passes beside the triangles); each vertex's (u, v, w, t) on its patch maps to within `tol` of it.
