@@ -54,7 +54,7 @@ struct ImageContouringOptions {
   /// "Adaptive cells"). Meant with the refinement toward the sheets, which makes the coarse
   /// cells' chords accurate.
   int coarse_ratio = 1;
-  /// Budget of grid cells (InvalidInput beyond it: choose a larger cell size).
+  /// Budget of distinct grid cells (InvalidInput beyond it: choose a larger cell size).
   std::int64_t max_cells = 20000000;
   /// Tetrahedra whose vertices' sheet normals differ by more than this get a crease vertex
   /// (only with sheet equations; 0 turns it off).
