@@ -54,48 +54,22 @@ bool same_knots(const KnotVector& a, const KnotVector& b, bool reversed) {
   return true;
 }
 
-// Whether f = g o psi as maps: equal knots and homogeneous control points (within 1e-12 of
-// their scale) once g's net is permuted by the symmetry.
-bool same_face_map(const BSplineVolume& f, const BSplineVolume& g, const FaceSymmetry& symmetry) {
-  if (f.is_rational() != g.is_rational() || f.dimension() != g.dimension()) return false;
-  const int g0 = symmetry.swap ? 1 : 0, g1 = symmetry.swap ? 0 : 1;
-  if (!same_knots(f.knot_vector(0), g.knot_vector(g0), symmetry.reverse0) ||
-      !same_knots(f.knot_vector(1), g.knot_vector(g1), symmetry.reverse1) || !same_knots(f.knot_vector(2), g.knot_vector(2), false))
-    return false;
-  const auto n = f.num_control_points();
-  const auto m = g.num_control_points();
-  if (n[0] != m[static_cast<std::size_t>(g0)] || n[1] != m[static_cast<std::size_t>(g1)] || n[2] != m[2]) return false;
-  const std::vector<double>& a = f.homogeneous();
-  const std::vector<double>& b = g.homogeneous();
-  double scale = 0;
-  for (double x : a) scale = std::max(scale, std::abs(x));
-  for (double x : b) scale = std::max(scale, std::abs(x));
-  const double tolerance = 1e-12 * std::max(scale, 1e-300);
-  const auto size = static_cast<std::size_t>(f.coefficient_size());
-  for (int k = 0; k < n[2]; ++k)
-    for (int j = 0; j < n[1]; ++j)
-      for (int i = 0; i < n[0]; ++i) {
-        const int i0 = symmetry.reverse0 ? n[0] - 1 - i : i;
-        const int i1 = symmetry.reverse1 ? n[1] - 1 - j : j;
-        const std::array<int, 3> from = symmetry.swap ? std::array<int, 3>{i1, i0, k} : std::array<int, 3>{i0, i1, k};
-        const auto p = static_cast<std::size_t>(f.linear_index({i, j, k})) * size;
-        const auto q = static_cast<std::size_t>(g.linear_index(from)) * size;
-        for (std::size_t c = 0; c < size; ++c)
-          if (std::abs(a[p + c] - b[q + c]) > tolerance) return false;
-      }
-  return true;
-}
-
-// Whether f = g o psi for 2-variate maps (a square's two free parameters): equal knots and
-// homogeneous control points (within 1e-12 of their scale) once g's net is permuted.
-bool same_square_map(const BSplineSurface& f, const BSplineSurface& g, const FaceSymmetry& symmetry) {
+// Whether f = g o psi as maps, psi a symmetry of the parameters 0 and 1 (a face's two
+// parameters, D = 3, t kept; or a square's two, D = 2): equal knots and homogeneous control
+// points (within 1e-12 of their scale) once g's net is permuted by the symmetry.
+template <int D>
+bool same_map_under(const TensorSpline<D>& f, const TensorSpline<D>& g, const FaceSymmetry& symmetry) {
   if (f.is_rational() != g.is_rational() || f.dimension() != g.dimension()) return false;
   const int g0 = symmetry.swap ? 1 : 0, g1 = symmetry.swap ? 0 : 1;
   if (!same_knots(f.knot_vector(0), g.knot_vector(g0), symmetry.reverse0) || !same_knots(f.knot_vector(1), g.knot_vector(g1), symmetry.reverse1))
     return false;
+  for (int d = 2; d < D; ++d)
+    if (!same_knots(f.knot_vector(d), g.knot_vector(d), false)) return false;
   const auto n = f.num_control_points();
   const auto m = g.num_control_points();
   if (n[0] != m[static_cast<std::size_t>(g0)] || n[1] != m[static_cast<std::size_t>(g1)]) return false;
+  for (std::size_t d = 2; d < static_cast<std::size_t>(D); ++d)
+    if (n[d] != m[d]) return false;
   const std::vector<double>& a = f.homogeneous();
   const std::vector<double>& b = g.homogeneous();
   double scale = 0;
@@ -103,17 +77,21 @@ bool same_square_map(const BSplineSurface& f, const BSplineSurface& g, const Fac
   for (double x : b) scale = std::max(scale, std::abs(x));
   const double tolerance = 1e-12 * std::max(scale, 1e-300);
   const auto size = static_cast<std::size_t>(f.coefficient_size());
-  for (int j = 0; j < n[1]; ++j)
-    for (int i = 0; i < n[0]; ++i) {
-      const int i0 = symmetry.reverse0 ? n[0] - 1 - i : i;
-      const int i1 = symmetry.reverse1 ? n[1] - 1 - j : j;
-      const std::array<int, 2> from = symmetry.swap ? std::array<int, 2>{i1, i0} : std::array<int, 2>{i0, i1};
-      const auto p = static_cast<std::size_t>(f.linear_index({i, j})) * size;
-      const auto q = static_cast<std::size_t>(g.linear_index(from)) * size;
-      for (std::size_t c = 0; c < size; ++c)
-        if (std::abs(a[p + c] - b[q + c]) > tolerance) return false;
-    }
-  return true;
+  std::array<int, D> i{};
+  for (;;) {
+    const int i0 = symmetry.reverse0 ? n[0] - 1 - i[0] : i[0];
+    const int i1 = symmetry.reverse1 ? n[1] - 1 - i[1] : i[1];
+    std::array<int, D> from = i;
+    from[0] = symmetry.swap ? i1 : i0;
+    from[1] = symmetry.swap ? i0 : i1;
+    const auto p = static_cast<std::size_t>(f.linear_index(i)) * size;
+    const auto q = static_cast<std::size_t>(g.linear_index(from)) * size;
+    for (std::size_t c = 0; c < size; ++c)
+      if (std::abs(a[p + c] - b[q + c]) > tolerance) return false;
+    std::size_t d = 0;
+    while (d < static_cast<std::size_t>(D) && ++i[d] == n[d]) i[d++] = 0;
+    if (d == static_cast<std::size_t>(D)) return true;
+  }
 }
 
 void check_in_r3(const std::vector<BSplineHypervolume>& patches) {
@@ -152,7 +130,7 @@ std::vector<RepeatedSquare> duplicate_squares(const std::vector<BSplineHypervolu
     for (std::size_t f = 0; f < g && !repeat[g]; ++f) {
       if (repeat[f]) continue;
       for (int s = 0; s < 8 && !repeat[g]; ++s)
-        if (same_square_map(squares[g].map, squares[f].map, FaceSymmetry{(s & 1) != 0, (s & 2) != 0, (s & 4) != 0})) {
+        if (same_map_under(squares[g].map, squares[f].map, FaceSymmetry{(s & 1) != 0, (s & 2) != 0, (s & 4) != 0})) {
           repeat[g] = 1;
           out.push_back({squares[g].id, squares[f].id});
         }
@@ -187,7 +165,7 @@ std::vector<PatchFace> interior_face_sweeps(const std::vector<BSplineHypervolume
       if (interior[f] && interior[g]) continue;
       for (int s = 0; s < 8; ++s) {
         const FaceSymmetry symmetry{(s & 1) != 0, (s & 2) != 0, (s & 4) != 0};
-        if (!same_face_map(faces[f].sweep, faces[g].sweep, symmetry)) continue;
+        if (!same_map_under(faces[f].sweep, faces[g].sweep, symmetry)) continue;
         // faces[f] = faces[g] o psi, so their normals differ by det D psi: opposite sides when
         // side_f * side_g * orientation = -1.
         if (faces[f].side * faces[g].side * symmetry.orientation() < 0) interior[f] = interior[g] = 1;
