@@ -40,6 +40,7 @@ void BM_SweptEnvelope(benchmark::State& state, int which, bool trim, JacobianBou
   const SweptEnvelopeStats& s = e.stats;
   state.counters["triangles"] = static_cast<double>(e.mesh.num_triangles());
   state.counters["rank_cells"] = static_cast<double>(s.rank_cells_examined);
+  state.counters["rank_parts"] = static_cast<double>(s.rank_part_cells_examined);
   state.counters["fold_cells"] = static_cast<double>(s.cells_examined);
   state.counters["s_superset"] = s.seconds_faces + s.seconds_folds + s.seconds_rank_deficient;
   state.counters["s_rank"] = s.seconds_rank_deficient;

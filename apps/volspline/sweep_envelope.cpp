@@ -49,6 +49,7 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
       {"fold_cells_kept", s.cells_kept},
       {"rank_cells_examined", s.rank_cells_examined},
       {"rank_cells_kept", s.rank_cells_kept},
+      {"rank_part_cells_examined", s.rank_part_cells_examined},
       {"rank_minors_divided_by_faces", s.rank_minors_divided_by_faces},
       {"budget_reached", s.budget_reached},
       {"samples", s.samples},

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "volspline/analysis/jacobian_determinant.h"
 #include "volspline/analysis/sub_jacobians.h"
@@ -27,7 +28,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kMaxFinestLevel = 12;
-// Spare coefficient buffers a thread keeps for the subdivision's children (16 per split).
+// Spare coefficient buffers a thread keeps for the subdivision's halves (2 per split).
 constexpr std::size_t kSpareBuffers = 64;
 // Bits per lattice coordinate of a grid vertex key: four of them and a 4-bit edge direction fill
 // 64 bits.
@@ -170,56 +171,19 @@ class Subdivision {
       return;
     }
     if (options_.progress) options_.progress->advance();
-    RankCertificate certificate = RankCertificate::None;
-    if (options_.bounds == JacobianBoundMethod::Bezier) {
-      certificate = bernstein_rank_certificate(cell.tensor, margins_);
-    } else {
-      const BSplineHypervolume& piece = pieces_[static_cast<std::size_t>(cell.piece)];
-      std::array<double, 4> lengths{};
-      for (int d = 0; d < 4; ++d) {
-        lengths[static_cast<std::size_t>(d)] = std::ldexp(piece.domain_max(d) - piece.domain_min(d), -cell.level);
-      }
-      certificate = cone_rank_certificate(cell.tensor, lengths);
-    }
-    switch (certificate) {
-      case RankCertificate::Sign: by_sign_.fetch_add(1); return;
-      case RankCertificate::NoFold: without_fold_.fetch_add(1); return;
-      case RankCertificate::Hull: by_hull_.fetch_add(1); return;
-      case RankCertificate::Cone: by_cone_.fetch_add(1); return;
-      case RankCertificate::None: break;
-    }
+    if (excluded(cell, 4)) return;
     if (cell.level == level_) {
       kept.push_back(global_origin(cell));
       return;
     }
-    // 16 children: split along u, then v, w, t; child bit (3 - d) says "upper half along d".
-    // The halves along u, v and w are this thread's scratch tensors and the children's
-    // coefficients come from its spare buffers: the tensors are large ((3p + 1)^4 4-vectors,
-    // 300 KB for Fig. 7's rational minors), and allocating, zeroing and copying 30 of them per
-    // split cost two thirds of the subdivision's time (docs/performance.md).
-    std::array<Cell, 16> children;
-    {
-      SplitScratch& scratch = scratch_.local();
-      bernstein_split(cell.tensor, 0, 0.5, scratch.halves[0], scratch.halves[1]);
-      for (std::size_t i = 0; i < 2; ++i) bernstein_split(scratch.halves[i], 1, 0.5, scratch.quarters[2 * i], scratch.quarters[2 * i + 1]);
-      for (std::size_t i = 0; i < 4; ++i) bernstein_split(scratch.quarters[i], 2, 0.5, scratch.eighths[2 * i], scratch.eighths[2 * i + 1]);
-      for (std::size_t i = 0; i < 16; ++i) children[i].tensor.coefficients = scratch.take_buffer();
-      for (std::size_t i = 0; i < 8; ++i) bernstein_split(scratch.eighths[i], 3, 0.5, children[2 * i].tensor, children[2 * i + 1].tensor);
-    }
-    std::array<std::vector<Lattice>, 16> child_kept;
-    tbb::parallel_for(0, 16, [&](int i) {
-      Cell& child = children[static_cast<std::size_t>(i)];
-      child.piece = cell.piece;
-      child.level = cell.level + 1;
-      for (std::size_t d = 0; d < 4; ++d) child.origin[d] = 2 * cell.origin[d] + ((i >> (3 - d)) & 1);
-      explore(child, child_kept[static_cast<std::size_t>(i)]);
-      scratch_.local().give_back(std::move(child.tensor.coefficients));
-    });
-    for (const auto& k : child_kept) kept.insert(kept.end(), k.begin(), k.end());
+    Lattice origin{};
+    for (std::size_t d = 0; d < 4; ++d) origin[d] = 2 * cell.origin[d];
+    split_along(cell.piece, cell.level + 1, origin, cell.tensor, 0, kept);
   }
 
   void fill(RankDeficientStats& stats) const {
     stats.cells_examined = std::min<std::int64_t>(examined_.load(), options_.max_cells);
+    stats.part_cells_examined = parts_examined_.load();
     stats.cells_excluded_by_sign = by_sign_.load();
     stats.cells_excluded_without_fold = without_fold_.load();
     stats.cells_excluded_by_hull = by_hull_.load();
@@ -230,6 +194,68 @@ class Subdivision {
   }
 
  private:
+  // Whether a certificate excludes the cell, whose first `split` directions are at cell.level and
+  // the others one level coarser (a part of a cell being split, below); counted by certificate.
+  bool excluded(const Cell& cell, int split) {
+    RankCertificate certificate = RankCertificate::None;
+    if (options_.bounds == JacobianBoundMethod::Bezier) {
+      certificate = bernstein_rank_certificate(cell.tensor, margins_);
+    } else {
+      const BSplineHypervolume& piece = pieces_[static_cast<std::size_t>(cell.piece)];
+      std::array<double, 4> lengths{};
+      for (int d = 0; d < 4; ++d) {
+        lengths[static_cast<std::size_t>(d)] = std::ldexp(piece.domain_max(d) - piece.domain_min(d), -(d < split ? cell.level : cell.level - 1));
+      }
+      certificate = cone_rank_certificate(cell.tensor, lengths);
+    }
+    switch (certificate) {
+      case RankCertificate::Sign: by_sign_.fetch_add(1); return true;
+      case RankCertificate::NoFold: without_fold_.fetch_add(1); return true;
+      case RankCertificate::Hull: by_hull_.fetch_add(1); return true;
+      case RankCertificate::Cone: by_cone_.fetch_add(1); return true;
+      case RankCertificate::None: break;
+    }
+    return false;
+  }
+
+  // A cell is split into its 16 children one direction at a time, u, v, w, then t, and each
+  // half, quarter and eighth is tested before it is split further: the certificates are
+  // monotone under subdivision (the coefficients of a part are convex combinations of the
+  // whole's, so a sign, a weak sign, a separating direction or a cone that holds on the whole
+  // holds on every part), so a part that is excluded takes its children with it and the kept
+  // cells are the ones the 16 children tested one by one would keep. A surface in the 4-D
+  // domain usually lies in one half along some directions: those halves are excluded after one
+  // split instead of being split three more times. The tensors are large ((3p + 1)^4 4-vectors,
+  // 300 KB for Fig. 7's rational minors; docs/performance.md), so the splits, not the tests,
+  // were the subdivision's time. `part` has directions < d split to `level`; the halves along d
+  // come from this thread's spare buffers. Visited low half first, so the kept cells come in
+  // the order of the children's index 8u + 4v + 2w + t.
+  void split_along(int piece, int level, const Lattice& origin, const BernsteinTensor<4>& part, int d, std::vector<Lattice>& kept) {
+    std::array<Cell, 2> halves;
+    {
+      SplitScratch& scratch = scratch_.local();
+      for (Cell& half : halves) half.tensor.coefficients = scratch.take_buffer();
+    }
+    bernstein_split(part, d, 0.5, halves[0].tensor, halves[1].tensor);
+    std::array<std::vector<Lattice>, 2> half_kept;
+    const auto visit = [&](std::size_t i) {
+      Cell& half = halves[i];
+      half.piece = piece;
+      half.level = level;
+      half.origin = origin;
+      half.origin[static_cast<std::size_t>(d)] += static_cast<std::int64_t>(i);
+      if (d == 3) {
+        explore(half, half_kept[i]);
+      } else {
+        parts_examined_.fetch_add(1);
+        if (!excluded(half, d + 1)) split_along(piece, level, half.origin, half.tensor, d + 1, half_kept[i]);
+      }
+      scratch_.local().give_back(std::move(half.tensor.coefficients));
+    };
+    tbb::parallel_invoke([&] { visit(0); }, [&] { visit(1); });
+    for (const auto& k : half_kept) kept.insert(kept.end(), k.begin(), k.end());
+  }
+
   const RankDeficientOptions& options_;
   int level_;
   std::vector<BSplineHypervolume> pieces_;
@@ -237,14 +263,10 @@ class Subdivision {
   std::array<int, 4> counts_{};
   std::array<double, 4> margins_{};
   std::vector<Cell> roots_;
-  // Per thread: the halves, quarters and eighths of a split, and coefficient buffers of
-  // finished children for the next split's children (their sizes are kept, so reusing one
-  // neither allocates nor zeroes). Buffers move between threads with the cells; each thread
-  // keeps at most kSpareBuffers.
+  // Per thread: coefficient buffers of finished parts for the next split's halves (their sizes
+  // are kept, so reusing one neither allocates nor zeroes). Buffers move between threads with
+  // the cells; each thread keeps at most kSpareBuffers.
   struct SplitScratch {
-    std::array<BernsteinTensor<4>, 2> halves;
-    std::array<BernsteinTensor<4>, 4> quarters;
-    std::array<BernsteinTensor<4>, 8> eighths;
     std::vector<std::vector<double>> spare;
     std::vector<double> take_buffer() {
       if (spare.empty()) return {};
@@ -258,7 +280,7 @@ class Subdivision {
   };
   tbb::enumerable_thread_specific<SplitScratch> scratch_;
   int divided_minors_ = 0;
-  std::atomic<std::int64_t> examined_{0}, by_sign_{0}, without_fold_{0}, by_hull_{0}, by_cone_{0}, unresolved_{0};
+  std::atomic<std::int64_t> examined_{0}, parts_examined_{0}, by_sign_{0}, without_fold_{0}, by_hull_{0}, by_cone_{0}, unresolved_{0};
 };
 
 std::uint64_t vertex_key(const Lattice& g) {

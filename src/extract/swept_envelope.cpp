@@ -248,6 +248,7 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
   const RankDeficientSurface r = rank_deficient_surface(s, rank);
   stats.rank_cells_examined += r.stats.cells_examined;
   stats.rank_cells_kept += r.stats.cells_kept;
+  stats.rank_part_cells_examined += r.stats.part_cells_examined;
   stats.rank_minors_divided_by_faces += r.stats.minors_divided_by_faces;
   if (r.stats.budget_exhausted) stats.budget_reached = true;
   const int rbase = static_cast<int>(out.mesh.num_vertices());

@@ -14,6 +14,7 @@
 
 #include "support/translated_generators.h"
 #include "volspline/analysis/sub_jacobians.h"
+#include "volspline/core/bernstein_tensor.h"
 #include "volspline/core/error.h"
 #include "volspline/core/progress.h"
 #include "volspline/mesh/parts.h"
@@ -193,6 +194,47 @@ TEST(RankDeficientSurface, BezierExclusionExaminesFewerCellsThanConeBounds) {
                  std::to_string(static_cast<double>(cone.stats.cells_examined) / static_cast<double>(bezier.stats.cells_examined)));
   // Same finest grid, and every surface cell of the cone run is kept by the Bezier one too.
   EXPECT_EQ(bezier.mesh.num_triangles(), cone.mesh.num_triangles());
+}
+
+// The subdivision tests halves, quarters and eighths of a cell before its 16 children, and an
+// excluded part takes its children with it. The certificates are monotone under subdivision
+// (a part's coefficients are convex combinations of the whole's), so the kept cells must be
+// exactly the finest cells whose own minors no certificate excludes: counted here independently,
+// from the minors of every one of the 8^4 finest cells, cut out of the piece's by de Casteljau.
+TEST(RankDeficientSurface, TheCellsKeptAreTheFinestCellsNoCertificateExcludes) {
+  for (const double end_weight : {1.0, 3.0}) {
+    const auto map = folded_sweep(end_weight);
+    for (int d = 0; d < 4; ++d) ASSERT_TRUE(map.knot_vector(d).is_bezier());
+    RankDeficientOptions options;
+    options.tolerance = 1.0 / 8;
+    const auto s = rank_deficient_surface(map, options);
+    ASSERT_EQ(s.stats.finest_level, 3);
+    const BernsteinTensor<4> minors = sub_jacobian_coefficients(map).minors;
+    std::array<double, 4> margins{};
+    for (int k = 0; k < 4; ++k) margins[static_cast<std::size_t>(k)] = 1e-10 * bernstein_max_abs(bernstein_components(minors, k));
+    // The eight slices along direction d of a tensor, by splitting off one eighth at a time.
+    const auto eighths = [](const BernsteinTensor<4>& f, int d) {
+      std::vector<BernsteinTensor<4>> slices;
+      BernsteinTensor<4> rest = f;
+      for (int i = 0; i < 7; ++i) {
+        auto [low, high] = bernstein_split(rest, d, 1.0 / (8 - i));
+        slices.push_back(std::move(low));
+        rest = std::move(high);
+      }
+      slices.push_back(std::move(rest));
+      return slices;
+    };
+    std::int64_t unexcluded = 0;
+    for (const auto& a : eighths(minors, 0))
+      for (const auto& b : eighths(a, 1))
+        for (const auto& c : eighths(b, 2))
+          for (const auto& cell : eighths(c, 3)) unexcluded += bernstein_rank_certificate(cell, margins) == RankCertificate::None;
+    EXPECT_GT(unexcluded, 0);
+    EXPECT_EQ(s.stats.cells_kept, unexcluded) << "end weight " << end_weight;
+    // Parts were tested, and fewer lattice cells than the 16 children of every split cell.
+    EXPECT_GT(s.stats.part_cells_examined, 0);
+    RecordProperty("cells_examined_end_weight_" + std::to_string(static_cast<int>(end_weight)), std::to_string(s.stats.cells_examined));
+  }
 }
 
 // A tiny protrusion: h = (w - c)^3 / 3 + ((u - a)^2 + (v - b)^2 - r^2)(w - c), so J123 = h_w =

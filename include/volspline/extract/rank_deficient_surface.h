@@ -72,8 +72,12 @@ struct RankDeficientStats {
   /// Minors of Bézier pieces divided by the linear factor of a domain face they vanish on (a
   /// collapsed face: a cylinder's axis, a ball's poles), counted once per piece and minor.
   int minors_divided_by_faces = 0;
+  /// Cells of the lattice (2^-k of a piece along every parameter) tested by a certificate.
   std::int64_t cells_examined = 0;
-  /// Cells excluded by each certificate (RankCertificate Sign, Hull, Cone).
+  /// Halves, quarters and eighths of cells tested while a cell is split into its 16 children
+  /// one direction at a time (an excluded part's children are not examined).
+  std::int64_t part_cells_examined = 0;
+  /// Cells and parts excluded by each certificate (RankCertificate Sign, Hull, Cone).
   std::int64_t cells_excluded_by_sign = 0, cells_excluded_by_hull = 0, cells_excluded_by_cone = 0;
   /// Excluded because J123 keeps a weak sign (RankCertificate::NoFold).
   std::int64_t cells_excluded_without_fold = 0;

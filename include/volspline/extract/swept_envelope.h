@@ -103,6 +103,8 @@ struct SweptEnvelopeStats {
   /// Cells of the 3-face zero surfaces and of the rank-deficient set.
   std::int64_t cells_examined = 0, cells_kept = 0;
   std::int64_t rank_cells_examined = 0, rank_cells_kept = 0;
+  /// Parts of rank cells tested while they were split (RankDeficientStats::part_cells_examined).
+  std::int64_t rank_part_cells_examined = 0;
   /// Minors divided by the factor of a collapsed domain face (RankDeficientStats).
   int rank_minors_divided_by_faces = 0;
   bool budget_reached = false;
