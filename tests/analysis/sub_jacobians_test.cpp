@@ -89,6 +89,17 @@ TEST(SubJacobians, SignCertificateForAStrictSignAndHullForASeparatedSet) {
   // separating direction found proves it by the hull.
   minors.coefficients = {1.0, 1.0, 0, 0, -1.0, 1e-13, 0, 0};
   EXPECT_EQ(bernstein_rank_certificate(minors, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::Hull);
+  // A coefficient vector zero to the margins (the minors' value at a point where all four
+  // vanish) leaves no proof, however well the others are separated: x . c <= sum |x_k| margin_k.
+  // Every minor changes sign across the three vectors; (1, 1, 1, 0) separates them.
+  BernsteinTensor<4> three({2, 0, 0, 0}, 4);
+  three.coefficients = {1.0, 1.0, -1.0, 0, 1.0, -1.0, 1.0, 0, -1.0, 0.5, 2.0, 0};
+  EXPECT_EQ(bernstein_rank_certificate(three, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::Hull);
+  three.coefficients = {1.0, 1.0, -1.0, 0, 1e-13, -1e-13, 1e-13, 0, -1.0, 0.5, 2.0, 0};
+  EXPECT_EQ(bernstein_rank_certificate(three, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::None);
+  // Beyond the margin in one component it can be proved again: (1.5, -0.01, 1, 0) . c > 0.
+  three.coefficients = {1.0, 1.0, -1.0, 0, 1e-13, -2e-9, 1e-13, 0, -1.0, 0.5, 2.0, 0};
+  EXPECT_EQ(bernstein_rank_certificate(three, {1e-12, 1e-12, 1e-12, 1e-12}), RankCertificate::Hull);
 }
 
 // Coefficient 4-vectors all within a thin slab on the positive side of a hidden hyperplane

@@ -63,7 +63,8 @@ enum class RankCertificate {
 /// The Bernstein certificate for a cell: Sign, else NoFold, else Hull, else None. `minors` is the four-
 /// component tensor of SubJacobiansBernstein; `margins[k]` bounds the rounding error of the
 /// coefficients of component k (a coefficient counts as positive only when > margins[k], and a
-/// direction d proves only when d . c_i > sum_k |d_k| margins[k]). The separating direction is
+/// direction d proves only when d . c_i > sum_k |d_k| margins[k], so a c_i with |c_ik| <= margins[k]
+/// for every k, the minors' value at a point of the set, leaves None at once). The separating direction is
 /// looked for as the mean of the normalised c_i, then as the point of their convex hull nearest the origin
 /// (Wolfe's minimum-norm-point algorithm), which separates the normalised vectors whenever their
 /// hull misses the origin (the margin test can still refuse it where the lengths differ by many
