@@ -224,6 +224,8 @@ async function main() {
       const object = await meshOf(glb, false);
       object.visible = false;
       scene.add(object);
+      // Every level a slider can show is framed as the page opens, not only the parts.
+      box.expandByObject(object);
       levels.push(object);
     }
     const label = element('label', {}, panel);
@@ -321,7 +323,13 @@ async function main() {
 
   const center = box.getCenter(new Vector3());
   controls.target.copy(center);
-  const distance = radius / Math.sin((camera.fov * Math.PI) / 360);
+  // The bounding sphere fits both ways: within the vertical angle and within the horizontal one
+  // the canvas's shape gives (fitting the vertical angle alone cut the sides off a canvas taller
+  // than wide: a narrow window, the browser test at 640 x 400).
+  camera.aspect = view.clientWidth / Math.max(view.clientHeight, 1);
+  const halfVertical = (camera.fov * Math.PI) / 360;
+  const halfHorizontal = Math.atan(Math.tan(halfVertical) * camera.aspect);
+  const distance = radius / Math.sin(Math.min(halfVertical, halfHorizontal));
   camera.position.copy(center).add(new Vector3(1.0, -1.6, 1.1).normalize().multiplyScalar(distance * 1.05));
   camera.up.set(0, 0, 1);
   camera.near = distance / 100;
