@@ -108,8 +108,7 @@ try {
     check(bytes < MAX_PAGE_BYTES, `${name}: ${bytes} bytes, the limit is ${MAX_PAGE_BYTES}`);
     const page = await browser.newPage();
     // 640 x 400: the canvas beside the panel is taller than wide, as in a narrow window, which
-    // the fit must handle (the border check below); and SwiftShader draws it in 40 % less time
-    // than at 960 x 600 (the test took 80 s of CI's serial time).
+    // the fit must handle (the border check below); SwiftShader also has fewer pixels to draw.
     await page.setViewport({ width: 640, height: 400 });
     const errors = [];
     page.on('console', (m) => {
