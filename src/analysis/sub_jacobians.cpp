@@ -84,12 +84,8 @@ Scaled det4(const Row& p, const Row& a, const std::array<std::array<Scaled, 4>, 
 // when the point reaches the origin (the hull contains it: no certificate exists) or after a
 // fixed number of steps. Rounding can only cost a certificate, never make a wrong one: whatever
 // direction is returned, the caller's test decides.
-// How the search below ended: a direction that proves; the hull of the unit vectors within 1e-9
-// of the origin (no direction can prove but by less than that); or neither.
-enum class Separation { Proved, OriginInHull, GaveUp };
-
 template <class Slack, class Accept>
-Separation minimum_norm_separation(const double* c, const std::vector<double>& inverse_norm, Slack slack_of, Accept accept) {
+bool minimum_norm_separation(const double* c, const std::vector<double>& inverse_norm, Slack slack_of, Accept accept) {
   const std::size_t n = inverse_norm.size();
   using Vec4 = Eigen::Vector4d;
   auto unit = [&](std::size_t i) { return Vec4(Eigen::Map<const Vec4>(c + 4 * i) * inverse_norm[i]); };
@@ -115,15 +111,15 @@ Separation minimum_norm_separation(const double* c, const std::vector<double>& i
         worst = i;
       }
     }
-    if (proves) return Separation::Proved;
-    if (x.squaredNorm() < kOrigin * kOrigin) return Separation::OriginInHull;
+    if (proves) return true;
+    if (x.squaredNorm() < kOrigin * kOrigin) return false;
     // x is the minimum-norm point of the whole hull: the hull misses the origin only by less
     // than the rounding, or accept() refused x for its margins.
-    if (lowest >= x.squaredNorm() * (1 - 1e-12)) return Separation::GaveUp;
-    if (std::find(active.begin(), active.end(), worst) != active.end()) return Separation::GaveUp;
+    if (lowest >= x.squaredNorm() * (1 - 1e-12)) return false;
+    if (std::find(active.begin(), active.end(), worst) != active.end()) return false;
     // Five affinely independent vectors span R^4's affine hull; more means rounding kept a
     // dependent one: give up rather than grow the system.
-    if (active.size() >= 5) return Separation::GaveUp;
+    if (active.size() >= 5) return false;
     active.push_back(worst);
     weight.push_back(0.0);
     for (int minor = 0; minor < 8; ++minor) {
@@ -144,7 +140,7 @@ Separation minimum_norm_separation(const double* c, const std::vector<double>& i
       rhs(m) = 1;
       const Column solution = kkt.completeOrthogonalDecomposition().solve(rhs);
       const Column a = solution.head(m);
-      if (!a.allFinite()) return Separation::GaveUp;
+      if (!a.allFinite()) return false;
       if ((a.array() > 1e-14).all()) {
         x = u * a;
         for (Eigen::Index k = 0; k < m; ++k) weight[static_cast<std::size_t>(k)] = a(k);
@@ -168,7 +164,7 @@ Separation minimum_norm_separation(const double* c, const std::vector<double>& i
           x += w * u.col(k);
         }
       }
-      if (kept_active.empty()) return Separation::GaveUp;
+      if (kept_active.empty()) return false;
       active = std::move(kept_active);
       weight = std::move(kept_weight);
       const double total = std::accumulate(weight.begin(), weight.end(), 0.0);
@@ -176,7 +172,7 @@ Separation minimum_norm_separation(const double* c, const std::vector<double>& i
       x /= total;
     }
   }
-  return accept(x) ? Separation::Proved : Separation::GaveUp;
+  return accept(x);
 }
 
 }  // namespace
@@ -304,8 +300,7 @@ RankCertificate bernstein_rank_certificate(const BernsteinTensor<4>& minors, con
     return true;
   };
   if (proves(Eigen::Vector4d(d[0], d[1], d[2], d[3]))) return RankCertificate::Hull;
-  const Separation how = minimum_norm_separation(c, inverse_norm, slack_of, proves);
-  if (how == Separation::Proved) return RankCertificate::Hull;
+  if (minimum_norm_separation(c, inverse_norm, slack_of, proves)) return RankCertificate::Hull;
   return RankCertificate::None;
 }
 
