@@ -94,6 +94,20 @@ struct ExactPointHash {
   }
 };
 
+// The exact inputs of one sheet_crease_point call (bit patterns), for remembering its answer.
+using CreaseKey = std::array<double, 25>;
+struct CreaseKeyHash {
+  std::size_t operator()(const CreaseKey& k) const {
+    std::size_t h = 0;
+    for (const double c : k) h = h * 0x9e3779b97f4a7c15ull + std::hash<double>{}(c);
+    return h;
+  }
+};
+struct CreaseAnswer {
+  std::optional<Eigen::Vector3d> point;
+  SheetPoint a, b;
+};
+
 struct ContourGrid {
   Eigen::Vector3d origin;
   double h = 1;
@@ -332,6 +346,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // corners and crossings are asked once each and need no memory.
   tbb::concurrent_unordered_map<std::array<double, 3>, signed char, ExactPointHash> remembered;
   std::atomic<std::int64_t> remembered_queries{0};
+  // Crease points likewise: a grid adaptation plans every cell's fans again, and the cells it
+  // did not split ask for the same crease points from the same inputs (sheet_crease_point is
+  // deterministic); on Figs. 5 and 8 those repeated Newton solves were 90 % of the planning.
+  tbb::concurrent_unordered_map<CreaseKey, CreaseAnswer, CreaseKeyHash> remembered_creases;
   auto checked_inside = [&](const Eigen::Vector3d& x) -> std::optional<bool> {
     // + 0.0 makes -0 and +0 one key.
     const std::array<double, 3> key{x.x() + 0.0, x.y() + 0.0, x.z() + 0.0};
@@ -1347,7 +1365,28 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           v.on[0] = sheet_point_of(crossings[static_cast<std::size_t>(corners[first[kind]])]);
           v.on[1] = sheet_point_of(crossings[static_cast<std::size_t>(corners[second[kind]])]);
           const Eigen::Vector3d direction = v.on[0].normal.cross(v.on[1].normal);
-          const std::optional<Eigen::Vector3d> x = sheet_crease_point(sheet_crossing_from, v.on[0], v.on[1], apex, direction, grid.h);
+          CreaseKey key{};
+          {
+            std::size_t k = 0;
+            for (const SheetPoint* p : {&v.on[0], &v.on[1]}) {
+              key[k++] = static_cast<double>(p->sheet);
+              key[k++] = static_cast<double>(p->triangle);
+              for (int i = 0; i < 4; ++i) key[k++] = p->parameters[i] + 0.0;
+              for (int i = 0; i < 3; ++i) key[k++] = p->normal[i] + 0.0;
+            }
+            for (int i = 0; i < 3; ++i) key[k++] = apex[i] + 0.0;
+            for (int i = 0; i < 3; ++i) key[k++] = direction[i] + 0.0;
+            key[k++] = grid.h;
+          }
+          std::optional<Eigen::Vector3d> x;
+          if (const auto it = remembered_creases.find(key); it != remembered_creases.end()) {
+            x = it->second.point;
+            v.on[0] = it->second.a;
+            v.on[1] = it->second.b;
+          } else {
+            x = sheet_crease_point(sheet_crossing_from, v.on[0], v.on[1], apex, direction, grid.h);
+            remembered_creases.emplace(key, CreaseAnswer{x, v.on[0], v.on[1]});
+          }
           // A crease only where the sheets meet at the crease angle or more there: two sheets
           // of one smooth surface (a seam, a coarse cell's curvature) meet tangentially, where
           // their meeting point is ill-conditioned and not needed.

@@ -104,5 +104,30 @@ TEST(SelfIntersectingTriangles, DuplicatePositionsTestEverything) {
   EXPECT_EQ(record.tested_triangles(), mesh.num_triangles());
 }
 
+// A mesh of 20,000 triangles and more is tested in slabs along its longest axis, in parallel;
+// the answer is CGAL's test of the whole mesh at once (what a record of an unrelated mesh makes
+// it run: every triangle new), and the pairs lie across the two overlapping spheres only. The
+// slabs' borders (at quantiles of the triangles' centres along y) cut through the overlap.
+TEST(SelfIntersectingTriangles, ALargeMeshTestedInSlabsGivesTheWholeMeshsAnswer) {
+  const TriangleMesh sphere = test_support::icosphere(4);
+  TriangleMesh mesh = sphere;
+  mesh.append(moved(sphere, {1.5, 0.3, 0}));
+  mesh.append(moved(test_support::icosphere(5), {0, 10, 0}));
+  ASSERT_GE(mesh.num_triangles(), 30000u);
+  const auto slabbed = self_intersecting_triangles(mesh);
+  SelfIntersectionRecord unrelated;
+  self_intersecting_triangles(moved(test_support::unit_cube(), {0, 0, 50}), &unrelated);
+  const auto whole = self_intersecting_triangles(mesh, &unrelated);
+  EXPECT_EQ(unrelated.tested_triangles(), mesh.num_triangles());
+  EXPECT_EQ(slabbed, whole);
+  ASSERT_FALSE(slabbed.empty());
+  const std::size_t per_sphere = sphere.num_triangles();
+  for (const auto& [i, j] : slabbed) {
+    EXPECT_LT(i, per_sphere);
+    EXPECT_GE(j, per_sphere);
+    EXPECT_LT(j, 2 * per_sphere);
+  }
+}
+
 }  // namespace
 }  // namespace volspline
