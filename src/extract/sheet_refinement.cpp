@@ -16,6 +16,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
+#include "volspline/core/bucket_sort.h"
 #include "volspline/core/error.h"
 #include "volspline/mesh/mesh_checks.h"
 
@@ -283,7 +284,7 @@ SheetRefinementStats refine_to_sheets(TriangleMesh& mesh, std::vector<SheetVerte
         const auto& t = mesh.triangles[f];
         for (int j = 0; j < 3; ++j) keys.push_back(refinement_edge_key(t[static_cast<std::size_t>(j)], t[static_cast<std::size_t>((j + 1) % 3)]));
       }
-      tbb::parallel_sort(keys.begin(), keys.end());
+      sort_keys_by_high_bits(keys, 32, mesh.num_vertices());
       keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
       if (!newly_settled.empty()) {
         tbb::parallel_sort(newly_settled.begin(), newly_settled.end());

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include <Eigen/Geometry>
-#include <tbb/parallel_sort.h>
 
+#include "volspline/core/bucket_sort.h"
 #include "volspline/core/error.h"
 
 namespace volspline {
@@ -98,7 +98,7 @@ EdgeStatistics edge_statistics(const TriangleMesh& mesh) {
       if (a != b) uses.push_back(edge_key(a, b));
     }
   }
-  tbb::parallel_sort(uses.begin(), uses.end());
+  sort_keys_by_high_bits(uses, 33, mesh.num_vertices());
 
   EdgeStatistics stats;
   for (std::size_t begin = 0; begin < uses.size();) {

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "volspline/extract/sheet_refinement.h"
+#include "volspline/core/error.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
