@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -12,6 +13,8 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include "volspline/core/bucket_sort.h"
 #include "volspline/core/error.h"
@@ -140,36 +143,41 @@ std::size_t nonmanifold_vertices(const TriangleMesh& mesh) {
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
     for (int j = 0; j < 3; ++j) link[fill[static_cast<std::size_t>(t[j])]++] = {t[(j + 1) % 3], t[(j + 2) % 3]};
   }
-  std::size_t count = 0;
-  std::vector<int> neighbours, parent;
-  for (std::size_t v = 0; v < n; ++v) {
-    if (repeated[v]) {
-      ++count;
-      continue;
-    }
-    if (start[v] == start[v + 1]) continue;
-    neighbours.clear();
-    for (std::size_t i = start[v]; i < start[v + 1]; ++i) neighbours.insert(neighbours.end(), link[i].begin(), link[i].end());
-    std::sort(neighbours.begin(), neighbours.end());
-    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-    parent.resize(neighbours.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    const auto local = [&](int w) { return static_cast<int>(std::lower_bound(neighbours.begin(), neighbours.end(), w) - neighbours.begin()); };
-    const auto find = [&](int a) {
-      while (parent[static_cast<std::size_t>(a)] != a) a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
-      return a;
-    };
-    std::size_t components = neighbours.size();
-    for (std::size_t i = start[v]; i < start[v + 1]; ++i) {
-      const int a = find(local(link[i][0])), b = find(local(link[i][1]));
-      if (a != b) {
-        parent[static_cast<std::size_t>(a)] = b;
-        --components;
-      }
-    }
-    if (components != 1) ++count;
-  }
-  return count;
+  // Vertices in blocks in parallel, each block with its own buffers.
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 4096), std::size_t{0},
+      [&](const tbb::blocked_range<std::size_t>& block, std::size_t count) {
+        std::vector<int> neighbours, parent;
+        for (std::size_t v = block.begin(); v < block.end(); ++v) {
+          if (repeated[v]) {
+            ++count;
+            continue;
+          }
+          if (start[v] == start[v + 1]) continue;
+          neighbours.clear();
+          for (std::size_t i = start[v]; i < start[v + 1]; ++i) neighbours.insert(neighbours.end(), link[i].begin(), link[i].end());
+          std::sort(neighbours.begin(), neighbours.end());
+          neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+          parent.resize(neighbours.size());
+          std::iota(parent.begin(), parent.end(), 0);
+          const auto local = [&](int w) { return static_cast<int>(std::lower_bound(neighbours.begin(), neighbours.end(), w) - neighbours.begin()); };
+          const auto find = [&](int a) {
+            while (parent[static_cast<std::size_t>(a)] != a) a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+            return a;
+          };
+          std::size_t components = neighbours.size();
+          for (std::size_t i = start[v]; i < start[v + 1]; ++i) {
+            const int a = find(local(link[i][0])), b = find(local(link[i][1]));
+            if (a != b) {
+              parent[static_cast<std::size_t>(a)] = b;
+              --components;
+            }
+          }
+          if (components != 1) ++count;
+        }
+        return count;
+      },
+      std::plus<>());
 }
 
 std::vector<int> coincident_vertices(const TriangleMesh& mesh, double tolerance) {

@@ -18,6 +18,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "volspline/core/bucket_sort.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
@@ -319,7 +320,7 @@ std::vector<std::pair<std::size_t, std::size_t>> self_intersecting_triangles(con
       };
       state->triangles.resize(n);
       for (std::size_t t = 0; t < n; ++t) state->triangles[t] = own_key(t);
-      std::sort(state->triangles.begin(), state->triangles.end());
+      sort_keys_by_high_bits(state->triangles, 42, mesh.num_vertices());
       for (const auto& [i, j] : result) state->pairs.emplace_back(own_key(i), own_key(j));
       state->vertex_at = std::move(vertex_at);
     }
