@@ -207,8 +207,10 @@ std::vector<std::pair<std::size_t, std::size_t>> self_intersecting_triangles(con
       double cell = 0;
       for (const Box& b : fresh)
         for (int d = 0; d < 3; ++d) cell = std::max(cell, b.max_coord(d) - b.min_coord(d));
-      const auto [low, high] = mesh.bounding_box();
-      cell = std::max(cell, 1e-9 * std::max((high - low).norm(), 1e-300));
+      // Not a structured binding: a lambda below uses `low` (clang refuses to capture bindings).
+      const std::pair<Eigen::Vector3d, Eigen::Vector3d> box = mesh.bounding_box();
+      const Eigen::Vector3d low = box.first;
+      cell = std::max(cell, 1e-9 * std::max((box.second - low).norm(), 1e-300));
       auto cell_index = [&](double x, int d) { return static_cast<std::int64_t>(std::floor((x - low[d]) / cell)); };
       auto cell_key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
         return (static_cast<std::uint64_t>(i) << 42) ^ (static_cast<std::uint64_t>(j) << 21) ^ static_cast<std::uint64_t>(k);
