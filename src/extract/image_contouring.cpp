@@ -33,6 +33,7 @@
 
 #include "volspline/core/elapsed_time.h"
 #include "volspline/core/error.h"
+#include "volspline/core/exact_hash.h"
 #include "volspline/extract/sheet_refinement.h"
 #include "volspline/mesh/mesh_checks.h"
 
@@ -85,24 +86,8 @@ bool any_triangle_meets(const ContourTree& tree, const CGAL::Bbox_3& box) {
 
 // Grid points o + h (i, j, k), 0 <= i < n[0] ..., one 64-bit key each; a cell is keyed by its
 // lowest corner.
-// A point's exact coordinates as a hash key.
-struct ExactPointHash {
-  std::size_t operator()(const std::array<double, 3>& p) const {
-    std::size_t h = 0;
-    for (const double c : p) h = h * 0x9e3779b97f4a7c15ull + std::hash<double>{}(c);
-    return h;
-  }
-};
-
 // The exact inputs of one sheet_crease_point call (bit patterns), for remembering its answer.
 using CreaseKey = std::array<double, 25>;
-struct CreaseKeyHash {
-  std::size_t operator()(const CreaseKey& k) const {
-    std::size_t h = 0;
-    for (const double c : k) h = h * 0x9e3779b97f4a7c15ull + std::hash<double>{}(c);
-    return h;
-  }
-};
 struct CreaseAnswer {
   std::optional<Eigen::Vector3d> point;
   SheetPoint a, b;
@@ -344,12 +329,12 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   // and adaptation, mostly of unchanged parts, so they ask the same points again: their answers
   // are remembered by the point's exact coordinates (the test is deterministic). The grid's
   // corners and crossings are asked once each and need no memory.
-  tbb::concurrent_unordered_map<std::array<double, 3>, signed char, ExactPointHash> remembered;
+  tbb::concurrent_unordered_map<std::array<double, 3>, signed char, ExactDoublesHash> remembered;
   std::atomic<std::int64_t> remembered_queries{0};
   // Crease points likewise: a grid adaptation plans every cell's fans again, and the cells it
   // did not split ask for the same crease points from the same inputs (sheet_crease_point is
   // deterministic); on Figs. 5 and 8 those repeated Newton solves were 90 % of the planning.
-  tbb::concurrent_unordered_map<CreaseKey, CreaseAnswer, CreaseKeyHash> remembered_creases;
+  tbb::concurrent_unordered_map<CreaseKey, CreaseAnswer, ExactDoublesHash> remembered_creases;
   auto checked_inside = [&](const Eigen::Vector3d& x) -> std::optional<bool> {
     // + 0.0 makes -0 and +0 one key.
     const std::array<double, 3> key{x.x() + 0.0, x.y() + 0.0, x.z() + 0.0};

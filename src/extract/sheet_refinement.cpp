@@ -18,6 +18,7 @@
 
 #include "volspline/core/bucket_sort.h"
 #include "volspline/core/error.h"
+#include "volspline/core/exact_hash.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
@@ -57,14 +58,6 @@ namespace sheet_refinement_detail {
 // one key).
 using RefinementEdgeEnds = std::array<double, 6>;
 
-struct RefinementEdgeEndsHash {
-  std::size_t operator()(const RefinementEdgeEnds& ends) const {
-    std::size_t h = 0;
-    for (const double c : ends) h = h * 0x9e3779b97f4a7c15ull + std::hash<double>{}(c);
-    return h;
-  }
-};
-
 }  // namespace sheet_refinement_detail
 
 struct SheetRefinementMemory::State {
@@ -75,7 +68,7 @@ struct SheetRefinementMemory::State {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     SheetVertex vertex;
   };
-  tbb::concurrent_unordered_map<sheet_refinement_detail::RefinementEdgeEnds, Entry, sheet_refinement_detail::RefinementEdgeEndsHash> splits;
+  tbb::concurrent_unordered_map<sheet_refinement_detail::RefinementEdgeEnds, Entry, ExactDoublesHash> splits;
   std::atomic<std::size_t> reused{0};
 };
 

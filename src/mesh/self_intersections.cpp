@@ -19,6 +19,7 @@
 #include <tbb/task_arena.h>
 
 #include "volspline/core/bucket_sort.h"
+#include "volspline/core/exact_hash.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
@@ -31,14 +32,6 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 using FaceIndex = Mesh::Face_index;
-
-struct PositionHash {
-  std::size_t operator()(const std::array<double, 3>& p) const {
-    std::size_t h = 0;
-    for (const double x : p) h = h * 0x9e3779b97f4a7c15ull + std::hash<double>{}(x);
-    return h;
-  }
-};
 
 // + 0.0 makes -0 and +0 one key.
 std::array<double, 3> position_key(const Eigen::Vector3d& p) { return {p.x() + 0.0, p.y() + 0.0, p.z() + 0.0}; }
@@ -63,7 +56,7 @@ struct SelfIntersectionRecord::State {
   bool valid = false;
   // The earlier mesh's vertices by position, its triangles by their packed vertex numbers, and
   // its intersecting pairs.
-  std::unordered_map<std::array<double, 3>, std::uint32_t, self_intersections_detail::PositionHash> vertex_at;
+  std::unordered_map<std::array<double, 3>, std::uint32_t, ExactDoublesHash> vertex_at;
   std::vector<std::uint64_t> triangles;  // sorted
   std::vector<std::pair<std::uint64_t, std::uint64_t>> pairs;
   std::size_t reused = 0;
@@ -148,7 +141,7 @@ std::vector<std::pair<std::size_t, std::size_t>> self_intersecting_triangles(con
   SelfIntersectionRecord::State* state = record ? record->state_.get() : nullptr;
   // This mesh's vertices by position (for the next test), and which of them the recorded mesh
   // had: none if two share a position.
-  std::unordered_map<std::array<double, 3>, std::uint32_t, PositionHash> vertex_at;
+  std::unordered_map<std::array<double, 3>, std::uint32_t, ExactDoublesHash> vertex_at;
   bool comparable = state && manifold && mesh.num_vertices() < kPackedVertices;
   if (comparable) {
     vertex_at.reserve(mesh.num_vertices());

@@ -101,13 +101,7 @@ TEST(NonmanifoldVertices, TwoCubesTouchingAtACornerMakeThatCornerNonmanifold) {
 TEST(NonmanifoldVertices, AChainOfCubesTouchingAtCornersCountsEveryTouch) {
   TriangleMesh chain;
   const int cubes = 1000;
-  for (int c = 0; c < cubes; ++c) {
-    const TriangleMesh cube = translated(test_support::unit_cube(), {double(c), double(c), double(c)});
-    const auto base = static_cast<int>(chain.num_vertices());
-    for (std::size_t v = 0; v < cube.num_vertices(); ++v) chain.add_vertex(cube.positions[v], kNoParameter);
-    for (std::size_t f = 0; f < cube.num_triangles(); ++f)
-      chain.add_triangle(cube.triangles[f][0] + base, cube.triangles[f][1] + base, cube.triangles[f][2] + base, 0);
-  }
+  for (int c = 0; c < cubes; ++c) chain.append(translated(test_support::unit_cube(), {double(c), double(c), double(c)}));
   EXPECT_EQ(nonmanifold_vertices(chain), 0u);
   weld_by_position(chain, 0);
   EXPECT_TRUE(edge_statistics(chain).closed_and_oriented());
