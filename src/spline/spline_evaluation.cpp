@@ -311,21 +311,31 @@ void contract_hypervolume_second(const double* G, std::ptrdiff_t sv, std::ptrdif
   }
 }
 
+// The (p_v, p_w) with fixed kernels: p_v = p_w (any p_u: a ball's or torus's (1, 2, 2), tricubic
+// and triquadratic solids), and linear against quadratic either way (a cylinder's (1, 1, 2),
+// Conkey–Joy Fig. 5's tumbled generator, whose swept solid the trimming evaluates millions of
+// times). All nine pairs would triple the instances, and the build time with them, for models
+// we do not have.
+bool has_fixed_vw_orders(const std::array<int, 3>& n) {
+  return n[1] == n[2] || (n[1] + n[2] == 5 && std::min(n[1], n[2]) == 2);
+}
+
 using SecondOrderHyperKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, std::ptrdiff_t, int, const double*, const double*,
                                         const double*, const double*, const detail::DerivativeTable<4>&, double*);
 
 template <int C, int N0>
-SecondOrderHyperKernel second_order_kernel_n1(int n12) {
-  if (n12 == 2) return contract_hypervolume_second<N0, 2, 2, C>;
-  if (n12 == 3) return contract_hypervolume_second<N0, 3, 3, C>;
+SecondOrderHyperKernel second_order_kernel_n1(int n1, int n2) {
+  if (n1 != n2) return n1 == 2 ? contract_hypervolume_second<N0, 2, 3, C> : contract_hypervolume_second<N0, 3, 2, C>;
+  if (n1 == 2) return contract_hypervolume_second<N0, 2, 2, C>;
+  if (n1 == 3) return contract_hypervolume_second<N0, 3, 3, C>;
   return contract_hypervolume_second<N0, 4, 4, C>;
 }
 
 template <int C>
 SecondOrderHyperKernel second_order_kernel_of(const std::array<int, 3>& n) {
-  if (n[0] == 2) return second_order_kernel_n1<C, 2>(n[1]);
-  if (n[0] == 3) return second_order_kernel_n1<C, 3>(n[1]);
-  return second_order_kernel_n1<C, 4>(n[1]);
+  if (n[0] == 2) return second_order_kernel_n1<C, 2>(n[1], n[2]);
+  if (n[0] == 3) return second_order_kernel_n1<C, 3>(n[1], n[2]);
+  return second_order_kernel_n1<C, 4>(n[1], n[2]);
 }
 
 // The 4-variate second-order kernel for the sizes the fixed kernels below take; nullptr otherwise.
@@ -333,12 +343,12 @@ SecondOrderHyperKernel second_order_hyper_kernel(const std::array<int, 3>& n, in
   if (c != 3 && c != 4) return nullptr;
   for (int x : n)
     if (x < 2 || x > 4) return nullptr;
-  if (n[1] != n[2]) return nullptr;
+  if (!has_fixed_vw_orders(n)) return nullptr;
   return c == 3 ? second_order_kernel_of<3>(n) : second_order_kernel_of<4>(n);
 }
 
-// The fixed-size kernels for n_u in {2, 3, 4} and n_v = n_w in {2, 3, 4} (degrees 1 to 3) and 3
-// or 4 numbers per coefficient; nullptr otherwise (the general recurrence then runs).
+// The fixed-size kernels for n_u in {2, 3, 4} and the (n_v, n_w) above, and 3 or 4 numbers per
+// coefficient; nullptr otherwise (the general recurrence then runs).
 using FixedKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, const double*, const double*, const double*,
                              double*);
 using FixedHyperKernel = void (*)(const double*, std::ptrdiff_t, std::ptrdiff_t, std::ptrdiff_t, int, const double*, const double*,
@@ -350,27 +360,25 @@ constexpr std::pair<FixedKernel, FixedHyperKernel> fixed_pair() {
 }
 
 template <int C, int Order, int N0>
-std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_n1(int n12) {
-  if (n12 == 2) return fixed_pair<N0, 2, 2, C, Order>();
-  if (n12 == 3) return fixed_pair<N0, 3, 3, C, Order>();
+std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_n1(int n1, int n2) {
+  if (n1 != n2) return n1 == 2 ? fixed_pair<N0, 2, 3, C, Order>() : fixed_pair<N0, 3, 2, C, Order>();
+  if (n1 == 2) return fixed_pair<N0, 2, 2, C, Order>();
+  if (n1 == 3) return fixed_pair<N0, 3, 3, C, Order>();
   return fixed_pair<N0, 4, 4, C, Order>();
 }
 
 template <int C, int Order>
 std::pair<FixedKernel, FixedHyperKernel> fixed_kernels_of(const std::array<int, 3>& n) {
-  if (n[0] == 2) return fixed_kernels_n1<C, Order, 2>(n[1]);
-  if (n[0] == 3) return fixed_kernels_n1<C, Order, 3>(n[1]);
-  return fixed_kernels_n1<C, Order, 4>(n[1]);
+  if (n[0] == 2) return fixed_kernels_n1<C, Order, 2>(n[1], n[2]);
+  if (n[0] == 3) return fixed_kernels_n1<C, Order, 3>(n[1], n[2]);
+  return fixed_kernels_n1<C, Order, 4>(n[1], n[2]);
 }
 
 std::pair<FixedKernel, FixedHyperKernel> fixed_kernels(const std::array<int, 3>& n, int c, int order) {
   if (order > 1 || (c != 3 && c != 4)) return {nullptr, nullptr};
   for (int x : n)
     if (x < 2 || x > 4) return {nullptr, nullptr};
-  // p_v = p_w (any p_u): the primitives and sweeps of the library (a ball's or torus's (1, 2, 2),
-  // tricubic and triquadratic solids); other combinations would triple the instances, and the
-  // build time with them, for no model we have.
-  if (n[1] != n[2]) return {nullptr, nullptr};
+  if (!has_fixed_vw_orders(n)) return {nullptr, nullptr};
   if (c == 3) return order == 0 ? fixed_kernels_of<3, 0>(n) : fixed_kernels_of<3, 1>(n);
   return order == 0 ? fixed_kernels_of<4, 0>(n) : fixed_kernels_of<4, 1>(n);
 }

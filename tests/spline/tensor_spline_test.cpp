@@ -192,9 +192,43 @@ TEST(TensorSpline, FourVariateValueAndPartialsToOrderTwoEqualTheGeneralRecurrenc
     check(random_spline<4>(rng, {p, p, p, 3}, 3, 3, true, false));
   }
   check(random_spline<4>(rng, {1, 2, 2, 1}, 2, 4, true));  // the ball and torus sweeps' degrees
+  check(random_spline<4>(rng, {1, 1, 2, 2}, 2, 4, true));  // a cylinder tumbled (Conkey–Joy Fig. 5)
+  check(random_spline<4>(rng, {2, 2, 1, 1}, 2, 3, false));
   check(random_spline<4>(rng, {3, 1, 2, 2}, 2, 3, false));
   check(random_spline<4>(rng, {2, 2, 2, 7}, 1, 3, false));
   check(random_spline<4>(rng, {4, 4, 4, 2}, 1, 3, true));
+}
+
+// The 3-variate fixed kernels (value and first partials) against the grid evaluation's general
+// recurrence, for the mixed orders (p_v != p_w) they cover and one they do not.
+TEST(TensorSpline, ThreeVariateValueAndFirstPartialsEqualTheGeneralRecurrence) {
+  std::mt19937 rng(16);
+  auto check = [&](const TensorSpline<3>& s) {
+    std::array<std::vector<double>, 3> samples;
+    for (int d = 0; d < 3; ++d) {
+      std::uniform_real_distribution<double> at(s.domain_min(d), s.domain_max(d));
+      for (int i = 0; i < 3; ++i) samples[static_cast<std::size_t>(d)].push_back(at(rng));
+      samples[static_cast<std::size_t>(d)].push_back(s.knot_vector(d).breakpoints()[1]);
+    }
+    for (int order = 0; order <= 1; ++order) {
+      const auto grid = s.evaluate_grid(samples, order);
+      const std::size_t n_alpha = derivative_multi_indices<3>(order).size(), points = 64;
+      const int k = s.dimension();
+      for (std::size_t pt = 0; pt < points; ++pt) {
+        const std::array<double, 3> t{samples[0][pt % 4], samples[1][(pt / 4) % 4], samples[2][pt / 16]};
+        const auto single = s.evaluate_derivatives(t, order);
+        for (std::size_t a = 0; a < n_alpha; ++a)
+          for (int c = 0; c < k; ++c) {
+            const double x = single[a * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
+            ASSERT_NEAR(grid[(a * points + pt) * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)], x, 1e-12 * (1 + std::abs(x)))
+                << "order " << order << " point " << pt << " alpha " << a;
+          }
+      }
+    }
+  };
+  check(random_spline<3>(rng, {1, 1, 2}, 2, 3, true));
+  check(random_spline<3>(rng, {3, 2, 1}, 2, 3, false));
+  check(random_spline<3>(rng, {1, 1, 3}, 2, 3, true));
 }
 
 TEST(TensorSpline, ParallelBatchEqualsSingleEvaluation) {
