@@ -49,9 +49,14 @@ void euclidean_points(const BernsteinTensor<D>& f, std::vector<double>& points) 
 }
 
 Eigen::AlignedBox3d box_of(const std::vector<double>& points) {
-  Eigen::AlignedBox3d box;
-  for (std::size_t i = 0; i < points.size(); i += 3) box.extend(Eigen::Vector3d(points[i], points[i + 1], points[i + 2]));
-  return box;
+  if (points.empty()) return Eigen::AlignedBox3d();
+  std::array<double, 3> low{points[0], points[1], points[2]}, high = low;
+  for (std::size_t i = 3; i < points.size(); i += 3)
+    for (std::size_t k = 0; k < 3; ++k) {
+      low[k] = std::min(low[k], points[i + k]);
+      high[k] = std::max(high[k], points[i + k]);
+    }
+  return Eigen::AlignedBox3d(Eigen::Vector3d(low[0], low[1], low[2]), Eigen::Vector3d(high[0], high[1], high[2]));
 }
 
 bool box_encloses(const Eigen::AlignedBox3d& box, double margin, const Eigen::Vector3d& x) {
@@ -79,11 +84,12 @@ int longest_direction(const BernsteinTensor<D>& f, const std::vector<double>& po
     if (f.degrees[static_cast<std::size_t>(d)] == 0) continue;
     const std::size_t step = f.stride(d), size = static_cast<std::size_t>(f.size(d));
     double leg = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if ((i / step) % size == size - 1) continue;  // the last point of its line along d
-      const double* a = points.data() + 3 * i;
-      const double* b = points.data() + 3 * (i + step);
-      leg = std::max({leg, std::abs(b[0] - a[0]), std::abs(b[1] - a[1]), std::abs(b[2] - a[2])});
+    // Every point but the last of its line along d, block by block (no division per point: this
+    // runs at each split of every membership query).
+    for (std::size_t block = 0; block < n; block += step * size) {
+      const double* a = points.data() + 3 * block;
+      const double* b = a + 3 * step;
+      for (std::size_t j = 0; j < 3 * step * (size - 1); ++j) leg = std::max(leg, std::abs(b[j] - a[j]));
     }
     if (leg > longest) {
       longest = leg;
@@ -121,11 +127,10 @@ int curved_direction(const BernsteinTensor<D>& f, const std::vector<double>& poi
     if (degree < 2) continue;
     const std::size_t step = f.stride(d), size = static_cast<std::size_t>(degree + 1);
     double second = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t position = (i / step) % size;
-      if (position == 0 || position == size - 1) continue;
-      second = std::max(second, std::abs(heights[i - step] - 2 * heights[i] + heights[i + step]));
-    }
+    // Every point but the first and last of its line along d.
+    for (std::size_t block = 0; block < count; block += step * size)
+      for (std::size_t i = block + step; i < block + step * (size - 1); ++i)
+        second = std::max(second, std::abs(heights[i - step] - 2 * heights[i] + heights[i + step]));
     const double term = (degree / 2) * ((degree + 1) / 2) / (2.0 * degree) * second;
     overshoot += term;
     if (term > largest) {
