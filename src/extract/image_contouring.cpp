@@ -1760,9 +1760,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       for (auto& t : result.triangles)
         for (int& v : t) v = renumber[static_cast<std::size_t>(v)];
     }
-    // Where the first round's verification already asks for finer cells, the contour is made
-    // again: the self-intersection check and its repairs would be undone.
-    if (round == 0 && adaptation < max_adaptations && !beyond_points.empty() && refine_cells_at()) {
+    // Where a round's verification asks for finer cells, the contour is made again at once: the
+    // self-intersection check and the repairs still to come would be undone. (A repair round can
+    // be the first to ask: a fan it took away can leave a chord the coarse cell does not hold.)
+    if (adaptation < max_adaptations && !beyond_points.empty() && refine_cells_at()) {
       adapted = true;
       break;
     }
