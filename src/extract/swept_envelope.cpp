@@ -1,12 +1,14 @@
 #include "volspline/extract/swept_envelope.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <chrono>
 #include <cmath>
 #include <unordered_map>
 
 #include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
 
 #include "volspline/analysis/jacobian_bezier.h"
 #include "volspline/analysis/jacobian_determinant.h"
@@ -199,23 +201,45 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
   zero.max_cells = options.max_cells;
   zero.bounds = options.bounds;
   zero.snap = true;
+  // The eight 3-faces are independent: their folds are found in parallel, then appended in
+  // face order (the output does not depend on the threads).
+  enum class FaceFolds { Interior, Degenerate, FoldFree, Found };
+  std::array<FaceFolds, 8> face_kind{};
+  std::array<SolidBoundary, 8> face_folds;
+  tbb::parallel_for(0, 8, [&](int f) {
+    const int c = f / 2, end = f % 2;
+    const auto ff = static_cast<std::size_t>(f);
+    if (c < 3 && listed_face(interior, patch_index, c, end)) {
+      face_kind[ff] = FaceFolds::Interior;
+      return;
+    }
+    const BSplineVolume cube = restrict_to_iso(s, c, end ? s.domain_max(c) : s.domain_min(c));
+    if (jacobian_vanishes_identically(cube)) {
+      face_kind[ff] = FaceFolds::Degenerate;
+    } else if (jacobian_keeps_weak_sign(cube)) {
+      face_kind[ff] = FaceFolds::FoldFree;
+    } else {
+      face_kind[ff] = FaceFolds::Found;
+      face_folds[ff] = jacobian_zero_surface(cube, zero);
+    }
+  });
   for (int c = 0; c < 4; ++c)
     for (int end = 0; end < 2; ++end) {
       const double value = end ? s.domain_max(c) : s.domain_min(c);
-      if (c < 3 && listed_face(interior, patch_index, c, end)) {
+      const auto ff = static_cast<std::size_t>(2 * c + end);
+      if (face_kind[ff] == FaceFolds::Interior) {
         ++stats.interior_face_sweeps;
         continue;
       }
-      const BSplineVolume cube = restrict_to_iso(s, c, value);
-      if (jacobian_vanishes_identically(cube)) {
+      if (face_kind[ff] == FaceFolds::Degenerate) {
         ++stats.degenerate_three_faces;
         continue;
       }
-      if (jacobian_keeps_weak_sign(cube)) {
+      if (face_kind[ff] == FaceFolds::FoldFree) {
         ++stats.fold_free_three_faces;
         continue;
       }
-      const SolidBoundary z = jacobian_zero_surface(cube, zero);
+      const SolidBoundary& z = face_folds[ff];
       stats.cells_examined += z.stats.cells_examined;
       stats.cells_kept += z.stats.cells_kept;
       if (z.stats.cells_examined >= options.max_cells) stats.budget_reached = true;
