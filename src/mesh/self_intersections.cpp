@@ -15,6 +15,7 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/box_intersection_d.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -153,30 +154,37 @@ std::vector<std::pair<std::size_t, std::size_t>> self_intersecting_triangles(con
     // Each triangle's key in the recorded mesh's numbering; a corner it did not have makes the
     // triangle new.
     constexpr std::uint64_t kNew = ~std::uint64_t{0};
+    // (Lookups only, each writing its own element: in parallel, the same answers.)
     std::vector<std::uint32_t> earlier(mesh.num_vertices(), std::numeric_limits<std::uint32_t>::max());
-    for (std::size_t v = 0; v < mesh.num_vertices(); ++v)
-      if (const auto it = state->vertex_at.find(position_key(mesh.positions[v])); it != state->vertex_at.end()) earlier[v] = it->second;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.num_vertices(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t v = r.begin(); v != r.end(); ++v)
+        if (const auto it = state->vertex_at.find(position_key(mesh.positions[v])); it != state->vertex_at.end()) earlier[v] = it->second;
+    });
     std::vector<std::uint64_t> key(n, kNew);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t) {
+        std::array<std::uint64_t, 3> v{};
+        bool known = true;
+        for (std::size_t j = 0; j < 3; ++j) {
+          const std::uint32_t e = earlier[static_cast<std::size_t>(mesh.triangles[t][j])];
+          known = known && e != std::numeric_limits<std::uint32_t>::max();
+          v[j] = e;
+        }
+        if (!known) continue;
+        const std::uint64_t k = packed_triangle(v);
+        if (std::binary_search(state->triangles.begin(), state->triangles.end(), k)) key[t] = k;
+      }
+    });
     // The recorded pairs' triangles, found where they still are.
     std::unordered_map<std::uint64_t, std::size_t> index;
     for (const auto& [a, b] : state->pairs) {
       index.emplace(a, n);
       index.emplace(b, n);
     }
-    for (std::size_t t = 0; t < n; ++t) {
-      std::array<std::uint64_t, 3> v{};
-      bool known = true;
-      for (std::size_t j = 0; j < 3; ++j) {
-        const std::uint32_t e = earlier[static_cast<std::size_t>(mesh.triangles[t][j])];
-        known = known && e != std::numeric_limits<std::uint32_t>::max();
-        v[j] = e;
-      }
-      if (!known) continue;
-      const std::uint64_t k = packed_triangle(v);
-      if (!std::binary_search(state->triangles.begin(), state->triangles.end(), k)) continue;
-      key[t] = k;
-      if (const auto it = index.find(k); it != index.end()) it->second = t;
-    }
+    if (!index.empty())
+      for (std::size_t t = 0; t < n; ++t)
+        if (key[t] != kNew)
+          if (const auto it = index.find(key[t]); it != index.end()) it->second = t;
     // Pairs of triangles both in the earlier mesh: as found then.
     for (const auto& [a, b] : state->pairs) {
       const std::size_t i = index.at(a), j = index.at(b);
@@ -213,21 +221,26 @@ std::vector<std::pair<std::size_t, std::size_t>> self_intersecting_triangles(con
         for (std::int64_t i = cell_index(b.min_coord(0), 0); i <= cell_index(b.max_coord(0), 0); ++i)
           for (std::int64_t j = cell_index(b.min_coord(1), 1); j <= cell_index(b.max_coord(1), 1); ++j)
             for (std::int64_t k = cell_index(b.min_coord(2), 2); k <= cell_index(b.max_coord(2), 2); ++k) cells.insert(cell_key(i, j, k));
-      for (std::size_t t = 0; t < n; ++t) {
-        const Box b = box_of(t);
-        std::array<std::int64_t, 3> from{}, to{};
-        std::int64_t count = 1;
-        for (int d = 0; d < 3; ++d) {
-          from[static_cast<std::size_t>(d)] = cell_index(b.min_coord(d), d);
-          to[static_cast<std::size_t>(d)] = cell_index(b.max_coord(d), d);
-          count *= to[static_cast<std::size_t>(d)] - from[static_cast<std::size_t>(d)] + 1;
+      std::vector<char> meets(n, 0);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+          const Box b = box_of(t);
+          std::array<std::int64_t, 3> from{}, to{};
+          std::int64_t count = 1;
+          for (int d = 0; d < 3; ++d) {
+            from[static_cast<std::size_t>(d)] = cell_index(b.min_coord(d), d);
+            to[static_cast<std::size_t>(d)] = cell_index(b.max_coord(d), d);
+            count *= to[static_cast<std::size_t>(d)] - from[static_cast<std::size_t>(d)] + 1;
+          }
+          bool found_cell = count > 64;  // a box much larger than the new ones: left to CGAL
+          for (std::int64_t i = from[0]; i <= to[0] && !found_cell; ++i)
+            for (std::int64_t j = from[1]; j <= to[1] && !found_cell; ++j)
+              for (std::int64_t k = from[2]; k <= to[2] && !found_cell; ++k) found_cell = cells.count(cell_key(i, j, k)) > 0;
+          meets[t] = found_cell;
         }
-        bool meets = count > 64;  // a box much larger than the new ones: left to CGAL
-        for (std::int64_t i = from[0]; i <= to[0] && !meets; ++i)
-          for (std::int64_t j = from[1]; j <= to[1] && !meets; ++j)
-            for (std::int64_t k = from[2]; k <= to[2] && !meets; ++k) meets = cells.count(cell_key(i, j, k)) > 0;
-        if (meets) near.push_back(b);
-      }
+      });
+      for (std::size_t t = 0; t < n; ++t)
+        if (meets[t]) near.push_back(box_of(t));
       CGAL::box_intersection_d(fresh.begin(), fresh.end(), near.begin(), near.end(),
                                [&](const Box& a, const Box& b) { tested[a.info()] = tested[b.info()] = 1; });
     }
@@ -314,7 +327,9 @@ std::vector<std::pair<std::size_t, std::size_t>> self_intersecting_triangles(con
                                 static_cast<std::uint64_t>(mesh.triangles[t][2])});
       };
       state->triangles.resize(n);
-      for (std::size_t t = 0; t < n; ++t) state->triangles[t] = own_key(t);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) state->triangles[t] = own_key(t);
+      });
       sort_keys_by_high_bits(state->triangles, 42, mesh.num_vertices());
       for (const auto& [i, j] : result) state->pairs.emplace_back(own_key(i), own_key(j));
       state->vertex_at = std::move(vertex_at);
