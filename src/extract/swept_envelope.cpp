@@ -120,11 +120,54 @@ bool listed_face(const std::vector<PatchFace>& faces, int patch, int direction, 
   return std::find(faces.begin(), faces.end(), PatchFace{patch, direction, end}) != faces.end();
 }
 
+// The folds of a patch's eight 3-faces s(c = 0 or 1) (Joy–Duchaineau's implicit surface of each
+// trivariate solid), or why a face has none: face f is direction f / 2 at end f % 2.
+enum class FaceFolds { Interior, Degenerate, FoldFree, Found };
+struct PatchFolds {
+  std::array<FaceFolds, 8> kind{};
+  std::array<SolidBoundary, 8> boundary;
+};
+
+// All patches' 3-faces are independent: their folds are found in one parallel pass (the torus's
+// four patches have one folded face each), then appended patch by patch in face order, so the
+// output does not depend on the threads.
+std::vector<PatchFolds> three_face_folds(const std::vector<BSplineHypervolume>& patches, const SweptEnvelopeOptions& options,
+                                         const std::vector<PatchFace>& interior) {
+  BoundaryOptions zero;
+  // The zero surfaces' flatness tolerance is on J relative to its scale; linear interpolation in
+  // cells that flat places vertices within about tolerance of the surface.
+  zero.tolerance = std::min(0.05, 10 * options.tolerance);
+  zero.max_cells = options.max_cells;
+  zero.bounds = options.bounds;
+  zero.snap = true;
+  std::vector<PatchFolds> folds(patches.size());
+  tbb::parallel_for(std::size_t{0}, 8 * patches.size(), [&](std::size_t job) {
+    const std::size_t patch = job / 8, f = job % 8;
+    const BSplineHypervolume& s = patches[patch];
+    const int c = static_cast<int>(f / 2), end = static_cast<int>(f % 2);
+    FaceFolds& kind = folds[patch].kind[f];
+    if (c < 3 && listed_face(interior, static_cast<int>(patch), c, end)) {
+      kind = FaceFolds::Interior;
+      return;
+    }
+    const BSplineVolume cube = restrict_to_iso(s, c, end ? s.domain_max(c) : s.domain_min(c));
+    if (jacobian_vanishes_identically(cube)) {
+      kind = FaceFolds::Degenerate;
+    } else if (jacobian_keeps_weak_sign(cube)) {
+      kind = FaceFolds::FoldFree;
+    } else {
+      kind = FaceFolds::Found;
+      folds[patch].boundary[f] = jacobian_zero_surface(cube, zero);
+    }
+  });
+  return folds;
+}
+
 // The superset of one patch into `out`, without the sweeps of the faces in `interior` (their
 // folds and their squares at t = 0 and 1; the squares their edges sweep stay, as those edges
-// bound other faces too).
+// bound other faces too); `folds`: its 3-faces' folds (three_face_folds).
 void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs, const SweptEnvelopeOptions& options,
-                    const std::vector<PatchFace>& interior, SweptEnvelope& out) {
+                    const std::vector<PatchFace>& interior, const PatchFolds& folds, SweptEnvelope& out) {
   SweptEnvelopeStats& stats = out.stats;
   const auto samples = envelope_samples(s, tol_abs, options);
   for (int d = 0; d < 4; ++d)
@@ -194,35 +237,8 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
 
   // The folds of the eight 3-faces (Joy–Duchaineau's implicit surface of each trivariate solid).
   const auto folds_start = Clock::now();
-  BoundaryOptions zero;
-  // The zero surfaces' flatness tolerance is on J relative to its scale; linear interpolation in
-  // cells that flat places vertices within about tolerance of the surface.
-  zero.tolerance = std::min(0.05, 10 * options.tolerance);
-  zero.max_cells = options.max_cells;
-  zero.bounds = options.bounds;
-  zero.snap = true;
-  // The eight 3-faces are independent: their folds are found in parallel, then appended in
-  // face order (the output does not depend on the threads).
-  enum class FaceFolds { Interior, Degenerate, FoldFree, Found };
-  std::array<FaceFolds, 8> face_kind{};
-  std::array<SolidBoundary, 8> face_folds;
-  tbb::parallel_for(0, 8, [&](int f) {
-    const int c = f / 2, end = f % 2;
-    const auto ff = static_cast<std::size_t>(f);
-    if (c < 3 && listed_face(interior, patch_index, c, end)) {
-      face_kind[ff] = FaceFolds::Interior;
-      return;
-    }
-    const BSplineVolume cube = restrict_to_iso(s, c, end ? s.domain_max(c) : s.domain_min(c));
-    if (jacobian_vanishes_identically(cube)) {
-      face_kind[ff] = FaceFolds::Degenerate;
-    } else if (jacobian_keeps_weak_sign(cube)) {
-      face_kind[ff] = FaceFolds::FoldFree;
-    } else {
-      face_kind[ff] = FaceFolds::Found;
-      face_folds[ff] = jacobian_zero_surface(cube, zero);
-    }
-  });
+  const std::array<FaceFolds, 8>& face_kind = folds.kind;
+  const std::array<SolidBoundary, 8>& face_folds = folds.boundary;
   for (int c = 0; c < 4; ++c)
     for (int end = 0; end < 2; ++end) {
       const double value = end ? s.domain_max(c) : s.domain_min(c);
@@ -371,7 +387,10 @@ SweptEnvelope swept_envelope_superset(const std::vector<BSplineHypervolume>& pat
   SweptEnvelope out;
   const double tol_abs = options.tolerance * control_diagonal(patches);
   const std::vector<PatchFace> interior = options.interior_faces ? std::vector<PatchFace>{} : interior_face_sweeps(patches);
-  for (std::size_t i = 0; i < patches.size(); ++i) patch_superset(patches[i], static_cast<int>(i), tol_abs, options, interior, out);
+  const auto folds_start = Clock::now();
+  const std::vector<PatchFolds> folds = three_face_folds(patches, options, interior);
+  out.stats.seconds_folds = seconds_since(folds_start);
+  for (std::size_t i = 0; i < patches.size(); ++i) patch_superset(patches[i], static_cast<int>(i), tol_abs, options, interior, folds[i], out);
   out.stats.seconds_total = seconds_since(start);
   return out;
 }
