@@ -1,6 +1,7 @@
 #include "volspline/extract/image_contouring.h"
 
 #include "clamped_barycentric.h"
+#include "triangle_buckets.h"
 
 #include <algorithm>
 #include <array>
@@ -48,41 +49,6 @@ using ContourPrimitive = CGAL::AABB_triangle_primitive<ContourKernel, std::vecto
 using ContourTree = CGAL::AABB_tree<CGAL::AABB_traits<ContourKernel, ContourPrimitive>>;
 using ContourClock = std::chrono::steady_clock;
 
-// The tree's triangles that meet `box`, each passed to `visit` until it returns false. CGAL's own
-// box queries test every node's box against the query through the Epick kernel's filtered
-// Bbox_3–Bbox_3 predicate (interval arithmetic, then an exact fallback), which was a tenth of
-// Fig. 4's whole run; two boxes of doubles overlap or not by comparisons alone
-// (CGAL::do_overlap), so the nodes use that and only the triangles the filtered predicate. The
-// answers are the same.
-template <class Visit>
-class TrianglesMeetingBox {
- public:
-  explicit TrianglesMeetingBox(Visit& visit) : visit_(visit) {}
-  bool go_further() const { return going_; }
-  void intersection(const CGAL::Bbox_3& box, const ContourPrimitive& primitive) {
-    if (CGAL::do_intersect(primitive.datum(), box)) going_ = visit_(primitive.id());
-  }
-  template <class Node>
-  bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
-    return CGAL::do_overlap(box, node.bbox());
-  }
-
- private:
-  Visit& visit_;
-  bool going_ = true;
-};
-
-template <class Visit>
-void visit_triangles_meeting(const ContourTree& tree, const CGAL::Bbox_3& box, Visit visit) {
-  TrianglesMeetingBox<Visit> traversal(visit);
-  tree.traversal(box, traversal);
-}
-
-bool any_triangle_meets(const ContourTree& tree, const CGAL::Bbox_3& box) {
-  bool found = false;
-  visit_triangles_meeting(tree, box, [&](ContourTree::Primitive_id) { return !(found = true); });
-  return found;
-}
 
 // Grid points o + h (i, j, k), 0 <= i < n[0] ..., one 64-bit key each; a cell is keyed by its
 // lowest corner.
@@ -311,9 +277,20 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       proper_source.push_back(t);
     }
   if (proper_triangles.empty()) throw InvalidInput("the superset has no triangle of nonzero area", "superset");
-  ContourTree tree(proper_triangles.cbegin(), proper_triangles.cend());
-  tree.build();
-  tree.accelerate_distance_queries();
+  const TriangleBuckets buckets(proper_triangles, coarse_h);
+  // CGAL's tree only for the closest triangle to a crossing that found no sheet: rare, so built
+  // when first needed.
+  std::optional<ContourTree> closest_tree;
+  std::once_flag closest_tree_built;
+  auto closest_triangle = [&](const Eigen::Vector3d& p) {
+    std::call_once(closest_tree_built, [&] {
+      closest_tree.emplace(proper_triangles.cbegin(), proper_triangles.cend());
+      closest_tree->build();
+      closest_tree->accelerate_distance_queries();
+    });
+    const auto closest = closest_tree->closest_point_and_primitive(ContourPoint(p.x(), p.y(), p.z()));
+    return static_cast<std::size_t>(closest.second - proper_triangles.cbegin());
+  };
 
   // Classification of corners, growing the region across faces whose corners disagree.
   const auto classify_start = ContourClock::now();
@@ -400,7 +377,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             const double m = reach + 1e-9 * grid.h;
             const CGAL::Bbox_3 box(std::min(x.x(), y.x()) - m, std::min(x.y(), y.y()) - m, std::min(x.z(), y.z()) - m,
                                    std::max(x.x(), y.x()) + m, std::max(x.y(), y.y()) + m, std::max(x.z(), y.z()) + m);
-            if (!any_triangle_meets(tree, box)) l = kind;
+            if (!buckets.any_meets(box)) l = kind;
           }
       });
       std::vector<std::size_t> parent(fresh.size());
@@ -612,18 +589,19 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   auto cross_edge = [&](std::size_t e) {
     const Eigen::Vector3d a = grid.point(edges[e].first), b = grid.point(edges[e].second);
     const Eigen::Vector3d ab = b - a;
-    using Hit = ContourTree::Intersection_and_primitive_id<ContourKernel::Segment_3>::Type;
-    std::vector<Hit> hits;
-    tree.all_intersections(ContourKernel::Segment_3(ContourPoint(a.x(), a.y(), a.z()), ContourPoint(b.x(), b.y(), b.z())), std::back_inserter(hits));
     std::vector<std::pair<double, std::size_t>> along;
     auto add = [&](const ContourPoint& p, std::size_t t) {
       along.emplace_back(std::clamp((Eigen::Vector3d(p.x(), p.y(), p.z()) - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0), t);
     };
-    for (const Hit& hit : hits) {
-      const std::size_t t = proper_source[static_cast<std::size_t>(hit.second - proper_triangles.cbegin())];
-      if (const auto* p = boost::get<ContourPoint>(&hit.first)) add(*p, t);
-      else if (const auto* s = boost::get<ContourKernel::Segment_3>(&hit.first)) add(CGAL::midpoint(s->source(), s->target()), t);
-    }
+    const ContourKernel::Segment_3 segment(ContourPoint(a.x(), a.y(), a.z()), ContourPoint(b.x(), b.y(), b.z()));
+    buckets.visit_candidates(segment.bbox(), [&](std::size_t i) {
+      const auto hit = CGAL::intersection(segment, proper_triangles[i]);
+      if (!hit) return true;
+      const std::size_t t = proper_source[i];
+      if (const auto* p = boost::get<ContourPoint>(&*hit)) add(*p, t);
+      else if (const auto* q = boost::get<ContourKernel::Segment_3>(&*hit)) add(CGAL::midpoint(q->source(), q->target()), t);
+      return true;
+    });
     std::sort(along.begin(), along.end());
     // Crossings closer than this are one (coincident sheets).
     const double merge = 1e-6;
@@ -689,14 +667,14 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
           const Eigen::Vector3d middle = 0.5 * (a + b);
           const ContourPoint centre(middle.x(), middle.y(), middle.z());
           const double within = r + 0.5 * std::sqrt(ab.squaredNorm());
-          visit_triangles_meeting(tree, box, [&](ContourTree::Primitive_id id) {
-            const std::size_t t = proper_source[static_cast<std::size_t>(id - proper_triangles.cbegin())];
+          buckets.visit_meeting(box, [&](std::size_t id) {
+            const std::size_t t = proper_source[id];
             const int sheet = sheet_of_triangle[t];
             if (crossing_sheets.count(sheet)) return true;
             const double d = CGAL::squared_distance(centre, triangles[t]);
             if (d > within * within) return true;
             const auto [it, fresh] = nearest_of_sheet.try_emplace(sheet, d, t);
-            if (!fresh && d < it->second.first) it->second = {d, t};
+            if (!fresh && std::make_pair(d, t) < it->second) it->second = {d, t};
             return true;
           });
           for (const auto& [sheet, near] : nearest_of_sheet) {
@@ -775,11 +753,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         const Eigen::Vector3d p = a + 0.5 * (low + high) * ab;
         const double r = reach + (high - low) * std::sqrt(ab.squaredNorm());
         std::vector<std::size_t> near;
-        visit_triangles_meeting(tree, CGAL::Bbox_3(p.x() - r, p.y() - r, p.z() - r, p.x() + r, p.y() + r, p.z() + r),
-                                [&](ContourTree::Primitive_id id) {
-                                  near.push_back(proper_source[static_cast<std::size_t>(id - proper_triangles.cbegin())]);
-                                  return true;
-                                });
+        buckets.visit_meeting(CGAL::Bbox_3(p.x() - r, p.y() - r, p.z() - r, p.x() + r, p.y() + r, p.z() + r), [&](std::size_t id) {
+          near.push_back(proper_source[id]);
+          return true;
+        });
         const ContourPoint cp(p.x(), p.y(), p.z());
         std::vector<std::pair<double, std::size_t>> by_distance;
         for (std::size_t t : near) by_distance.emplace_back(CGAL::squared_distance(cp, triangles[t]), t);
@@ -806,8 +783,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     }
     if (!x.on_sheet && !found) {
       const Eigen::Vector3d p = a + lambda * ab;
-      const auto closest = tree.closest_point_and_primitive(ContourPoint(p.x(), p.y(), p.z()));
-      x.triangle = proper_source[static_cast<std::size_t>(closest.second - proper_triangles.cbegin())];
+      x.triangle = proper_source[closest_triangle(p)];
       x.off_superset = true;
     }
     // Strictly inside the edge, so that no triangle degenerates.
