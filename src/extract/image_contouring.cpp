@@ -13,6 +13,7 @@
 #include <mutex>
 #include <numeric>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <unordered_map>

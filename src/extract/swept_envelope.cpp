@@ -5,6 +5,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <unordered_map>
 
 #include <Eigen/Geometry>
@@ -128,6 +129,28 @@ struct PatchFolds {
   std::array<SolidBoundary, 8> boundary;
 };
 
+// Face job % 8 of patch job / 8, for three_face_folds.
+void face_folds_of(const std::vector<BSplineHypervolume>& patches, const std::vector<PatchFace>& interior, const BoundaryOptions& zero,
+                   std::size_t job, std::vector<PatchFolds>& folds) {
+  const std::size_t patch = job / 8, f = job % 8;
+  const BSplineHypervolume& s = patches[patch];
+  const int c = static_cast<int>(f / 2), end = static_cast<int>(f % 2);
+  FaceFolds& kind = folds[patch].kind[f];
+  if (c < 3 && listed_face(interior, static_cast<int>(patch), c, end)) {
+    kind = FaceFolds::Interior;
+    return;
+  }
+  const BSplineVolume cube = restrict_to_iso(s, c, end ? s.domain_max(c) : s.domain_min(c));
+  if (jacobian_vanishes_identically(cube)) {
+    kind = FaceFolds::Degenerate;
+  } else if (jacobian_keeps_weak_sign(cube)) {
+    kind = FaceFolds::FoldFree;
+  } else {
+    kind = FaceFolds::Found;
+    folds[patch].boundary[f] = jacobian_zero_surface(cube, zero);
+  }
+}
+
 // All patches' 3-faces are independent: their folds are found in one parallel pass (the torus's
 // four patches have one folded face each), then appended patch by patch in face order, so the
 // output does not depend on the threads.
@@ -141,25 +164,18 @@ std::vector<PatchFolds> three_face_folds(const std::vector<BSplineHypervolume>& 
   zero.bounds = options.bounds;
   zero.snap = true;
   std::vector<PatchFolds> folds(patches.size());
+  // A job's error is kept and the first in patch and face order rethrown, as the serial loop did
+  // (TBB would rethrow whichever it caught first).
+  std::vector<std::exception_ptr> errors(8 * patches.size());
   tbb::parallel_for(std::size_t{0}, 8 * patches.size(), [&](std::size_t job) {
-    const std::size_t patch = job / 8, f = job % 8;
-    const BSplineHypervolume& s = patches[patch];
-    const int c = static_cast<int>(f / 2), end = static_cast<int>(f % 2);
-    FaceFolds& kind = folds[patch].kind[f];
-    if (c < 3 && listed_face(interior, static_cast<int>(patch), c, end)) {
-      kind = FaceFolds::Interior;
-      return;
-    }
-    const BSplineVolume cube = restrict_to_iso(s, c, end ? s.domain_max(c) : s.domain_min(c));
-    if (jacobian_vanishes_identically(cube)) {
-      kind = FaceFolds::Degenerate;
-    } else if (jacobian_keeps_weak_sign(cube)) {
-      kind = FaceFolds::FoldFree;
-    } else {
-      kind = FaceFolds::Found;
-      folds[patch].boundary[f] = jacobian_zero_surface(cube, zero);
+    try {
+      face_folds_of(patches, interior, zero, job, folds);
+    } catch (...) {
+      errors[job] = std::current_exception();
     }
   });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   return folds;
 }
 

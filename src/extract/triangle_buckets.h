@@ -13,11 +13,13 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -32,19 +34,39 @@ class TriangleBuckets {
   // `triangles` must outlive the index; `size`: the cubes' edge, about a query box's extent.
   TriangleBuckets(const std::vector<BucketTriangle>& triangles, double size) : triangles_(triangles), size_(size) {
     if (!(size > 0) || !std::isfinite(size)) throw InvalidInput("the cube size must be positive and finite", "size");
+    if (triangles.size() >= std::numeric_limits<std::uint32_t>::max())
+      throw InvalidInput("at most 2^32 - 2 triangles, got " + std::to_string(triangles.size()), "triangles");
     boxes_.reserve(triangles.size());
     for (const BucketTriangle& t : triangles) {
       boxes_.push_back(t.bbox());
       low_ = low_ + boxes_.back();
     }
+    // A cube's box as computed may miss a point whose computed cube index is that cube by a few
+    // units in the last place of the coordinates: the test of a triangle against it is widened.
+    double scale = size;
+    for (int d = 0; d < 3 && !triangles.empty(); ++d) scale = std::max({scale, std::abs(low_.min(d)), std::abs(low_.max(d))});
+    const double margin = 1e-9 * scale;
     std::vector<std::vector<std::pair<std::uint64_t, std::uint32_t>>> chunk_entries(
         (triangles.size() + kChunk - 1) / kChunk);
     tbb::parallel_for(std::size_t{0}, chunk_entries.size(), [&](std::size_t c) {
       for (std::size_t t = c * kChunk; t < std::min(triangles.size(), (c + 1) * kChunk); ++t) {
         const auto [from, to] = range(boxes_[t]);
+        // A triangle whose box spans more than two cubes in two directions (large, oblique) goes
+        // only into the cubes it meets: its entries grow with its area, not its box's volume.
+        const std::int64_t count = (to[0] - from[0] + 1) * (to[1] - from[1] + 1) * (to[2] - from[2] + 1);
+        const bool every_cube = count <= 8 || triangles[t].is_degenerate();
         for (std::int64_t k = from[2]; k <= to[2]; ++k)
           for (std::int64_t j = from[1]; j <= to[1]; ++j)
-            for (std::int64_t i = from[0]; i <= to[0]; ++i) chunk_entries[c].emplace_back(key(i, j, k), static_cast<std::uint32_t>(t));
+            for (std::int64_t i = from[0]; i <= to[0]; ++i) {
+              if (!every_cube) {
+                const double x = low_.min(0) + static_cast<double>(i) * size_, y = low_.min(1) + static_cast<double>(j) * size_,
+                             z = low_.min(2) + static_cast<double>(k) * size_;
+                if (!CGAL::do_intersect(triangles[t], CGAL::Bbox_3(x - margin, y - margin, z - margin, x + size_ + margin,
+                                                                   y + size_ + margin, z + size_ + margin)))
+                  continue;
+              }
+              chunk_entries[c].emplace_back(key(i, j, k), static_cast<std::uint32_t>(t));
+            }
       }
     });
     std::size_t total = 0;
@@ -62,14 +84,14 @@ class TriangleBuckets {
     }
   }
 
-  // Each triangle whose box meets `box` (closed), once, until `visit` returns false; in no
-  // particular order (the callers' answers do not depend on it).
+  // Every triangle that meets `box` (closed), and some others whose boxes meet it, each once,
+  // until `visit` returns false; in no particular order (the callers' answers do not depend on
+  // it). `visit` must not query this index again.
   template <class Visit>
   void visit_candidates(const CGAL::Bbox_3& box, Visit visit) const {
-    // Triangles seen in this query: stamped with the query's number (per thread; numbers only
-    // grow, so stamps of earlier queries, or of an earlier index at this address, never match).
-    thread_local std::vector<std::uint32_t> seen;
-    thread_local std::uint32_t query = 0;
+    // Triangles seen in this query, stamped with the query's number (per thread and per index,
+    // freed with it; numbers only grow, so earlier queries' stamps never match).
+    auto& [seen, query] = seen_.local();
     if (seen.size() < triangles_.size()) seen.resize(triangles_.size(), 0);
     if (++query == 0) {
       std::fill(seen.begin(), seen.end(), 0);
@@ -90,12 +112,15 @@ class TriangleBuckets {
         }
   }
 
-  // The triangles that meet `box` (CGAL's filtered triangle-box predicate), ascending, until
+  // The triangles that meet `box` (CGAL's filtered triangle-box predicate), each once, until
   // `visit` returns false.
   template <class Visit>
   void visit_meeting(const CGAL::Bbox_3& box, Visit visit) const {
     visit_candidates(box, [&](std::size_t t) { return !CGAL::do_intersect(triangles_[t], box) || visit(t); });
   }
+
+  // Triangle entries of all cubes (for tests of the index's size).
+  std::size_t entries() const { return members_.size(); }
 
   bool any_meets(const CGAL::Bbox_3& box) const {
     bool found = false;
@@ -138,6 +163,7 @@ class TriangleBuckets {
                     -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   std::vector<std::uint32_t> members_;
   std::unordered_map<std::uint64_t, std::pair<std::size_t, std::size_t>> cubes_;
+  mutable tbb::enumerable_thread_specific<std::pair<std::vector<std::uint32_t>, std::uint32_t>> seen_;
 };
 
 }  // namespace volspline

@@ -47,11 +47,13 @@ TEST(TriangleBuckets, QueriesGiveTheBruteForceAnswersEachTriangleOnce) {
     });
     EXPECT_EQ(std::set<std::size_t>(visited.begin(), visited.end()), meeting) << "query " << q;
     EXPECT_EQ(visited.size(), meeting.size()) << "a triangle visited twice, query " << q;
-    EXPECT_EQ(std::set<std::size_t>(candidates.begin(), candidates.end()), overlapping) << "query " << q;
-    EXPECT_EQ(candidates.size(), overlapping.size()) << "a candidate visited twice, query " << q;
+    const std::set<std::size_t> distinct(candidates.begin(), candidates.end());
+    EXPECT_EQ(candidates.size(), distinct.size()) << "a candidate visited twice, query " << q;
+    for (const std::size_t t : meeting) EXPECT_TRUE(distinct.count(t)) << "query " << q << " missed triangle " << t;
+    for (const std::size_t t : distinct) EXPECT_TRUE(overlapping.count(t)) << "query " << q << ": triangle " << t << " is no candidate";
     int visits = 0;
     buckets.visit_candidates(box, [&](std::size_t) { return ++visits < 1; });
-    EXPECT_EQ(visits, overlapping.empty() ? 0 : 1) << "the visit goes on after its callback said stop";
+    EXPECT_EQ(visits, distinct.empty() ? 0 : 1) << "the visit goes on after its callback said stop";
   }
 }
 
@@ -82,6 +84,29 @@ TEST(TriangleBuckets, AnyMeetsAndSegmentCandidatesAgreeWithTheBruteForce) {
     EXPECT_EQ(found, crossed) << "segment " << q;
     EXPECT_EQ(buckets.any_meets(segment.bbox()), any) << "segment " << q;
   }
+}
+
+// A large oblique triangle is entered into the cubes it meets, not every cube of its box: about
+// its area in cubes (a 4 x 4 x 4 box of 40^3 cubes holds a triangle of area about 14, some 1,400
+// cube faces' worth), and its queries still find it wherever it is.
+TEST(TriangleBuckets, ALargeObliqueTriangleTakesTheCubesItMeetsNotItsBox) {
+  const std::vector<BucketTriangle> triangles{BucketTriangle(BucketPoint(0, 0, 0), BucketPoint(4, 0, 4), BucketPoint(0, 4, 4))};
+  const TriangleBuckets buckets(triangles, 0.1);
+  EXPECT_LT(buckets.entries(), std::size_t{10000});
+  EXPECT_GT(buckets.entries(), std::size_t{1000});
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int q = 0; q < 500; ++q) {
+    double a = unit(rng), b = unit(rng);
+    if (a + b > 1) {
+      a = 1 - a;
+      b = 1 - b;
+    }
+    // A point of the triangle, and a tiny box around it.
+    const double x = 4 * a, y = 4 * b, z = 4 * (a + b), r = 1e-7;
+    EXPECT_TRUE(buckets.any_meets(CGAL::Bbox_3(x - r, y - r, z - r, x + r, y + r, z + r))) << x << " " << y << " " << z;
+  }
+  EXPECT_FALSE(buckets.any_meets(CGAL::Bbox_3(3.5, 3.5, 0.0, 3.9, 3.9, 0.5)));  // inside the box, far from the triangle
 }
 
 TEST(TriangleBuckets, RefusesACubeSizeThatIsNotPositiveAndFinite) {

@@ -192,7 +192,11 @@ TEST(TensorSpline, FourVariateValueAndPartialsToOrderTwoEqualTheGeneralRecurrenc
     check(random_spline<4>(rng, {p, p, p, 3}, 3, 3, true, false));
   }
   check(random_spline<4>(rng, {1, 2, 2, 1}, 2, 4, true));  // the ball and torus sweeps' degrees
-  check(random_spline<4>(rng, {1, 1, 2, 2}, 2, 4, true));  // a cylinder tumbled (Conkey–Joy Fig. 5)
+  // Rational with three coordinates (four numbers per coefficient: the fixed kernels' case) as the
+  // swept solids are, and with four (the general recurrence).
+  check(random_spline<4>(rng, {1, 2, 2, 1}, 2, 3, true));
+  check(random_spline<4>(rng, {1, 1, 2, 2}, 2, 3, true));  // a cylinder tumbled (Conkey–Joy Fig. 5)
+  check(random_spline<4>(rng, {1, 1, 2, 2}, 2, 4, true));
   check(random_spline<4>(rng, {2, 2, 1, 1}, 2, 3, false));
   check(random_spline<4>(rng, {3, 1, 2, 2}, 2, 3, false));
   check(random_spline<4>(rng, {2, 2, 2, 7}, 1, 3, false));
