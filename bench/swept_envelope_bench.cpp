@@ -25,13 +25,14 @@ SweptSolid swept_bench_example(int which) {
 }
 
 void BM_SweptEnvelope(benchmark::State& state, int which, bool trim, JacobianBoundMethod bounds, double coarse_cells = 0,
-                      int adaptive_ratio = 0) {
+                      int adaptive_ratio = 0, bool halving_levels = true) {
   const auto patches = swept_patches(swept_bench_example(which));
   SweptEnvelopeOptions options;
   options.trim = trim;
   options.bounds = bounds;
   options.coarse_cell_factor = coarse_cells;
   options.adaptive_ratio = adaptive_ratio;
+  options.contouring.halving_levels = halving_levels;
   SweptEnvelope e;
   for (auto _ : state) {
     e = swept_envelope(patches, options);
@@ -77,6 +78,15 @@ BENCHMARK_CAPTURE(BM_SweptEnvelope, fig7_turning_folded_cylinder_adaptive4, 3, t
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig8_tumbling_folded_cube_adaptive4, 4, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, capsule_adaptive4, 5, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, annulus_adaptive4, 6, true, kBezier, 0.0, 4)->Unit(benchmark::kMillisecond)->Iterations(1);
+// The baseline of the octree: adaptive cells split straight into unit cells (halving_levels off,
+// the complex before 2026-12-07).
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig4_torus_adaptive4_unit_split, 0, true, kBezier, 0.0, 4, false)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig5_tumbling_cylinder_adaptive4_unit_split, 1, true, kBezier, 0.0, 4, false)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig6_folded_cube_adaptive4_unit_split, 2, true, kBezier, 0.0, 4, false)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig7_turning_folded_cylinder_adaptive4_unit_split, 3, true, kBezier, 0.0, 4, false)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, fig8_tumbling_folded_cube_adaptive4_unit_split, 4, true, kBezier, 0.0, 4, false)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, capsule_adaptive4_unit_split, 5, true, kBezier, 0.0, 4, false)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_SweptEnvelope, annulus_adaptive4_unit_split, 6, true, kBezier, 0.0, 4, false)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig6_superset_bezier, 2, false, kBezier)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_SweptEnvelope, fig6_superset_cone_baseline, 2, false, kCone)->Unit(benchmark::kMillisecond)->Iterations(1);

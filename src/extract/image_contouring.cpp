@@ -799,34 +799,220 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   };
   cross_new_edges();
 
-  // Adaptive cells (coarse_ratio > 1): the coarse cells where the contour bends by more than the
-  // crease angle or a vertex found no sheet are split into ratio^3 fine cells (with their
-  // neighbours too, twice as many fine cells and no better result on the examples); the smooth parts keep their coarse cells, whose vertices lie on the sheets all the
-  // same (the refinement toward the sheets makes their chords accurate). Conforming, so that the
-  // surface stays closed: each square face of the complex is triangulated by a rule that depends
-  // on the face alone. A face of a refined cell: its fine squares, each split along the
-  // diagonal from its lowest to its highest corner (the Kuhn diagonal every cube uses). A coarse
-  // face none of whose edges borders a refined cell: the same diagonal. Any other coarse face:
-  // a fan from its centre over its edges, split into fine steps where they border a refined
-  // cell. A coarse cell with such a face or a fine one (a transition cell) is coned from its
-  // centre over its faces' triangles; any other keeps its six Kuhn tetrahedra.
-  std::unordered_set<std::uint64_t> refined;
-  if (ratio > 1) {
-    const double crease_cos_coarse = std::cos(options.crease_angle_degrees * std::numbers::pi / 180);
-    // Without the sheets' equations a crossing's normal is that of its superset triangle.
-    const auto superset_normal = [&](std::size_t t) {
-      const Eigen::Vector3d a(triangles[t][0].x(), triangles[t][0].y(), triangles[t][0].z());
-      const Eigen::Vector3d b(triangles[t][1].x(), triangles[t][1].y(), triangles[t][1].z());
-      const Eigen::Vector3d c(triangles[t][2].x(), triangles[t][2].y(), triangles[t][2].z());
-      const Eigen::Vector3d n = (b - a).cross(c - a);
-      return n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : n;
-    };
-    std::unordered_set<std::uint64_t> bent;
+  // Adaptive cells (coarse_ratio > 1), an octree: a coarse cell where the contour bends by more
+  // than the crease angle or a vertex found no sheet is split into halves (eight cells ratio / 2
+  // wide), each of those where the contour still bends into halves again, and so on down to cells
+  // of `cell_size` (where a half would be odd, ratio 6 say, straight into unit cells). A crease
+  // is a curve: of the 64 unit cells of a coarse cell it passes, it bends the contour in a few
+  // (Fig. 5: 1,411 of 66,112), so splitting by halves keeps most of the coarse cell at twice the
+  // unit width (docs/envelopes.md, "Adaptive cells"). The smooth parts keep their coarse cells,
+  // whose vertices lie on the sheets all the same (the refinement toward the sheets makes their
+  // chords accurate). Conforming, so that the surface stays closed: every square face of the
+  // complex is triangulated by a rule that depends on the face alone.
+  // - The complex's vertices are its cells' corners: a lattice point is one if it is a multiple
+  //   of the smallest cell size among the eight unit cubes around it (sizes divide each other).
+  // - A square face is tiled by the squares of the finer of its two sides (a quadtree).
+  // - A tile none of whose edges holds a vertex inside: split along the diagonal from its lowest
+  //   to its highest corner (the Kuhn diagonal every cube uses); any other: a fan from its centre
+  //   over its edges' vertices.
+  // - A cell none of whose edges holds a vertex inside keeps its six Kuhn tetrahedra; any other
+  //   (a transition cell) is coned from its centre over its faces' triangles.
+  // With halving_levels off (coarse and unit cells only) this is the two-level complex of
+  // before 2026-12-07, face for face.
+  std::vector<std::int64_t> level_size{ratio};
+  while (level_size.back() > 1) {
+    const std::int64_t s = level_size.back();
+    level_size.push_back(options.halving_levels && (s / 2 == 1 || (s / 2) % 2 == 0) ? s / 2 : 1);
+  }
+  const std::size_t levels = level_size.size();
+  // split[l]: the cells level_size[l] wide split into cells level_size[l + 1] wide; split[0], the
+  // coarse cells refined.
+  std::vector<std::unordered_set<std::uint64_t>> split(std::max<std::size_t>(1, levels - 1));
+  std::unordered_set<std::uint64_t>& refined = split[0];
+  using LatticeIndex = std::array<std::int64_t, 3>;
+  const auto index_key = [&](const LatticeIndex& i) { return grid.key(i[0], i[1], i[2]); };
+  const auto floor_to = [](const LatticeIndex& i, std::int64_t s) { return LatticeIndex{i[0] - i[0] % s, i[1] - i[1] % s, i[2] - i[2] % s}; };
+  const auto level_of = [&](std::int64_t s) {
+    return static_cast<std::size_t>(std::find(level_size.begin(), level_size.end(), s) - level_size.begin());
+  };
+  // The width of the cell holding the unit cube whose lowest corner is u (outside the coarse
+  // grid: a coarse cell).
+  const auto leaf_size = [&](const LatticeIndex& u) {
+    for (std::size_t d = 0; d < 3; ++d)
+      if (u[d] < 0 || u[d] > grid.n[d] - 2) return level_size[0];
+    for (std::size_t l = 0; l + 1 < levels; ++l)
+      if (!split[l].count(index_key(floor_to(u, level_size[l])))) return level_size[l];
+    return std::int64_t{1};
+  };
+  // The corners of the cells narrower than the coarse ones, rebuilt with the complex. The
+  // complex's vertices are the coarse lattice points and these.
+  std::unordered_set<std::uint64_t> fine_vertices;
+  const auto is_vertex = [&](const LatticeIndex& q) {
+    return (q[0] % ratio == 0 && q[1] % ratio == 0 && q[2] % ratio == 0) || fine_vertices.count(index_key(q)) > 0;
+  };
+  // The complex's vertices strictly inside the segment `length` steps from p along `axis`,
+  // appended from p onward (backward: from the far end back).
+  const auto edge_vertices = [&](const LatticeIndex& p, int axis, std::int64_t length, bool backward, std::vector<std::uint64_t>* out) {
+    bool any = false;
+    for (std::int64_t k = 1; k < length; ++k) {
+      LatticeIndex q = p;
+      q[static_cast<std::size_t>(axis)] += backward ? length - k : k;
+      if (!is_vertex(q)) continue;
+      if (!out) return true;
+      any = true;
+      out->push_back(index_key(q));
+    }
+    return any;
+  };
+  const auto lattice_of = [&](std::uint64_t key) { return grid.index(key); };
+  // The coarse cells next to a refined one (itself included), rebuilt with the complex: any
+  // other keeps its Kuhn tetrahedra and plain faces without looking further.
+  std::unordered_set<std::uint64_t> near_refined;
+  const auto coarse_cell_in_grid = [&](const LatticeIndex& j) {
+    for (std::size_t d = 0; d < 3; ++d)
+      if (j[d] < 0 || j[d] > grid.n[d] - 1 - ratio) return false;
+    return true;
+  };
+  const auto far_from_refined = [&](const LatticeIndex& low) { return coarse_cell_in_grid(low) && !near_refined.count(index_key(low)); };
+  const std::array<std::uint64_t, 3> unit_step{grid.key(1, 0, 0), grid.key(0, 1, 0), grid.key(0, 0, 1)};
+  // The tiles of the square face of lowest corner p, `width` steps wide, across `axis`.
+  const auto face_tiles = [&](const LatticeIndex& p, int axis, std::int64_t width, std::vector<std::pair<LatticeIndex, std::int64_t>>& out) {
+    const int b = std::min((axis + 1) % 3, (axis + 2) % 3), c = std::max((axis + 1) % 3, (axis + 2) % 3);
+    std::vector<std::pair<LatticeIndex, std::int64_t>> todo{{p, width}};
+    while (!todo.empty()) {
+      const auto [q, s] = todo.back();
+      todo.pop_back();
+      // A square is split (the cells on one side narrower) exactly where its centre is a vertex.
+      LatticeIndex centre = q;
+      centre[static_cast<std::size_t>(b)] += s / 2;
+      centre[static_cast<std::size_t>(c)] += s / 2;
+      if (s == 1 || !is_vertex(centre)) {
+        out.emplace_back(q, s);
+        continue;
+      }
+      const std::int64_t next = level_size[level_of(s) + 1];
+      // Pushed last to first, so that they come out in rows along b, then c.
+      for (std::int64_t v = s / next - 1; v >= 0; --v)
+        for (std::int64_t u = s / next - 1; u >= 0; --u) {
+          LatticeIndex r = q;
+          r[static_cast<std::size_t>(b)] += u * next;
+          r[static_cast<std::size_t>(c)] += v * next;
+          todo.emplace_back(r, next);
+        }
+    }
+  };
+  // The face's triangles (lattice keys) and its fans' centres; true if it is one tile on the Kuhn
+  // diagonal.
+  const auto face_triangles = [&](std::uint64_t p_key, int axis, std::int64_t width, std::vector<std::array<std::uint64_t, 3>>& out_triangles,
+                                  std::vector<std::uint64_t>* fan_centres) {
+    const int b = std::min((axis + 1) % 3, (axis + 2) % 3), c = std::max((axis + 1) % 3, (axis + 2) % 3);
+    const LatticeIndex p = lattice_of(p_key);
+    if (width == level_size[0] && ratio > 1) {
+      // A coarse face with a side not next to a refined cell: neither side is split, and no
+      // edge borders a split cell.
+      LatticeIndex below = p;
+      below[static_cast<std::size_t>(axis)] -= width;
+      if (far_from_refined(p) || far_from_refined(below)) {
+        const std::uint64_t eb = static_cast<std::uint64_t>(width) * unit_step[static_cast<std::size_t>(b)];
+        const std::uint64_t ec = static_cast<std::uint64_t>(width) * unit_step[static_cast<std::size_t>(c)];
+        out_triangles.push_back({p_key, p_key + eb, p_key + eb + ec});
+        out_triangles.push_back({p_key, p_key + ec, p_key + eb + ec});
+        return true;
+      }
+    }
+    std::vector<std::pair<LatticeIndex, std::int64_t>> tiles;
+    face_tiles(p, axis, width, tiles);
+    bool plain = tiles.size() == 1;
+    std::vector<std::uint64_t> loop;
+    for (const auto& [q, s] : tiles) {
+      LatticeIndex qb = q, qc = q, qbc = q;
+      qb[static_cast<std::size_t>(b)] += s;
+      qc[static_cast<std::size_t>(c)] += s;
+      qbc[static_cast<std::size_t>(b)] += s;
+      qbc[static_cast<std::size_t>(c)] += s;
+      loop.clear();
+      // Counter-clockwise in (b, c): each side's first corner, then the vertices inside it.
+      loop.push_back(index_key(q));
+      edge_vertices(q, b, s, false, &loop);
+      loop.push_back(index_key(qb));
+      edge_vertices(qb, c, s, false, &loop);
+      loop.push_back(index_key(qbc));
+      edge_vertices(qc, b, s, true, &loop);
+      loop.push_back(index_key(qc));
+      edge_vertices(q, c, s, true, &loop);
+      if (loop.size() == 4) {
+        out_triangles.push_back({loop[0], loop[1], loop[2]});
+        out_triangles.push_back({loop[0], loop[3], loop[2]});
+        continue;
+      }
+      plain = false;
+      LatticeIndex centre = q;
+      centre[static_cast<std::size_t>(b)] += s / 2;
+      centre[static_cast<std::size_t>(c)] += s / 2;
+      const std::uint64_t centre_key = index_key(centre);
+      if (fan_centres) fan_centres->push_back(centre_key);
+      for (std::size_t k = 0; k < loop.size(); ++k) out_triangles.push_back({centre_key, loop[k], loop[(k + 1) % loop.size()]});
+    }
+    return plain;
+  };
+  // A cell is coned from its centre when one of its edges holds a vertex inside.
+  const auto is_transition = [&](std::uint64_t low_key, std::int64_t s) {
+    if (s == 1 || (s == level_size[0] && !near_refined.count(low_key))) return false;
+    const LatticeIndex low = lattice_of(low_key);
+    for (int axis = 0; axis < 3; ++axis) {
+      const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+      for (int e = 0; e < 4; ++e) {
+        LatticeIndex start = low;
+        start[static_cast<std::size_t>(b)] += (e & 1) * s;
+        start[static_cast<std::size_t>(c)] += ((e >> 1) & 1) * s;
+        if (edge_vertices(start, axis, s, false, nullptr)) return true;
+      }
+    }
+    return false;
+  };
+  // The lowest corner of the face of cell `low` (`s` wide) across `axis` on `side`.
+  const auto face_of = [&](std::uint64_t low, std::int64_t s, int axis, int side) {
+    return side ? low + static_cast<std::uint64_t>(s) * unit_step[static_cast<std::size_t>(axis)] : low;
+  };
+  // The lattice points a cell's tetrahedra use (corners; fan and cone centres).
+  const auto cell_points = [&](std::uint64_t cell, std::int64_t s, std::vector<std::uint64_t>& corners, std::vector<std::uint64_t>& centres) {
+    if (!is_transition(cell, s)) {
+      for (int c = 0; c < 8; ++c) corners.push_back(corner_key(cell, c, s));
+      return;
+    }
+    std::vector<std::array<std::uint64_t, 3>> face;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side) {
+        face.clear();
+        face_triangles(face_of(cell, s, axis, side), axis, s, face, &centres);
+        for (const auto& t : face)
+          for (std::uint64_t k : t) corners.push_back(k);
+      }
+    centres.push_back(offset_key(cell, s / 2, s / 2, s / 2));
+  };
+  // The cells `size` wide among the polygons' (vertex ids: edge ids into all_crossings) where the
+  // contour bends by more than the crease angle or a vertex found no sheet.
+  const double crease_cos_coarse = std::cos(options.crease_angle_degrees * std::numbers::pi / 180);
+  // Without the sheets' equations a crossing's normal is that of its superset triangle.
+  const auto superset_normal = [&](std::size_t t) {
+    const Eigen::Vector3d a(triangles[t][0].x(), triangles[t][0].y(), triangles[t][0].z());
+    const Eigen::Vector3d b(triangles[t][1].x(), triangles[t][1].y(), triangles[t][1].z());
+    const Eigen::Vector3d c(triangles[t][2].x(), triangles[t][2].y(), triangles[t][2].z());
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    return n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : n;
+  };
+  const auto bent_cells = [&](std::int64_t size) {
+    std::vector<std::pair<std::size_t, std::size_t>> groups;
     for (std::size_t first = 0; first < polygons.size();) {
       std::size_t end = first;
       while (end < polygons.size() && polygons[end].cell == polygons[first].cell) ++end;
+      if (cell_of[polygons[first].cell].size == size) groups.emplace_back(first, end);
+      first = end;
+    }
+    std::vector<char> bent(groups.size(), 0);
+    tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
       std::vector<int> corners;
-      for (std::size_t q = first; q < end; ++q)
+      for (std::size_t q = groups[g].first; q < groups[g].second; ++q)
         corners.insert(corners.end(), polygons[q].vertex.begin(), polygons[q].vertex.begin() + polygons[q].count);
       std::sort(corners.begin(), corners.end());
       corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
@@ -838,113 +1024,102 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         normals.push_back(xj.on_sheet ? xj.normal : superset_normal(xj.triangle));
         for (std::size_t i = 0; !refine_cell && i < j; ++i) refine_cell = std::abs(normals[j].dot(normals[i])) < crease_cos_coarse;
       }
-      if (refine_cell) bent.insert(cell_of[polygons[first].cell].low);
-      first = end;
+      bent[g] = refine_cell ? 1 : 0;
+    });
+    std::vector<std::uint64_t> out;
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      if (bent[g]) out.push_back(cell_of[polygons[groups[g].first].cell].low);
+    return out;
+  };
+  if (ratio > 1)
+    for (std::uint64_t cell : bent_cells(ratio)) refined.insert(cell);
+  // The complex of the leaves (the cells not split), its polygons, and the crossings of their
+  // edges (`crossings`, the polygons' vertex ids renumbered into it).
+  // A cell's tetrahedra: Kuhn's or coned from its centre.
+  const auto march_leaf = [&](std::uint64_t low, std::int64_t size, std::uint64_t cell, std::vector<ContourPolygon>& out) {
+    if (!is_transition(low, size)) {
+      march_cube(low, size, cell, out);
+      return;
     }
-    refined = std::move(bent);
-  }
-  // The complex of the refined cells' fine cells and the coarse cells, its polygons, and the
-  // crossings of their edges (`crossings`, the polygons' vertex ids renumbered into it).
-  auto build_complex = [&]() {
+    const std::uint64_t centre = offset_key(low, size / 2, size / 2, size / 2);
+    std::vector<std::array<std::uint64_t, 3>> face;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side) {
+        face.clear();
+        face_triangles(face_of(low, size, axis, side), axis, size, face, nullptr);
+        for (const auto& t : face) march({centre, t[0], t[1], t[2]}, cell, out);
+      }
+  };
+  // only_width > 0: just the cells that wide inside the refined cells, for the bends below.
+  auto make_complex = [&](std::int64_t only_width) {
     stats.grid_cells_refined = static_cast<std::int64_t>(refined.size());
     std::vector<std::uint64_t> sorted_refined(refined.begin(), refined.end());
     std::sort(sorted_refined.begin(), sorted_refined.end());
-    // The fine lattice points of the refined cells.
-    {
-      std::vector<std::uint64_t> points;
-      points.reserve(sorted_refined.size() * static_cast<std::size_t>((ratio + 1) * (ratio + 1) * (ratio + 1)));
-      for (std::uint64_t cell : sorted_refined)
-        for (std::int64_t k = 0; k <= ratio; ++k)
-          for (std::int64_t j = 0; j <= ratio; ++j)
-            for (std::int64_t i = 0; i <= ratio; ++i) points.push_back(offset_key(cell, i, j, k));
-      label_all(std::move(points), 1);
-    }
-    const std::array<std::uint64_t, 3> unit{grid.key(1, 0, 0), grid.key(0, 1, 0), grid.key(0, 0, 1)};
-    auto cell_in_grid = [&](const std::array<std::int64_t, 3>& j) {
-      for (std::size_t d = 0; d < 3; ++d)
-        if (j[d] < 0 || j[d] > grid.n[d] - 1 - ratio) return false;
-      return true;
-    };
-    auto is_refined = [&](const std::array<std::int64_t, 3>& j) { return cell_in_grid(j) && refined.count(grid.key(j[0], j[1], j[2])) > 0; };
-    // The coarse edge from lattice point p along `axis` borders a refined cell.
-    auto edge_split = [&](std::uint64_t p, int axis) {
-      const auto i = grid.index(p);
-      const int b = (axis + 1) % 3, c = (axis + 2) % 3;
-      for (int sb = 0; sb < 2; ++sb)
-        for (int sc = 0; sc < 2; ++sc) {
-          std::array<std::int64_t, 3> j = i;
-          j[static_cast<std::size_t>(b)] -= sb * ratio;
-          j[static_cast<std::size_t>(c)] -= sc * ratio;
-          if (is_refined(j)) return true;
-        }
-      return false;
-    };
-    // The face of lower corner p across `axis`: fine (a refined cell on either side), Kuhn or fan.
-    enum class FaceKind { Fine, Kuhn, Fan };
-    auto face_kind = [&](std::uint64_t p, int axis) {
-      auto i = grid.index(p);
-      if (is_refined(i)) return FaceKind::Fine;
-      i[static_cast<std::size_t>(axis)] -= ratio;
-      if (is_refined(i)) return FaceKind::Fine;
-      const int b = (axis + 1) % 3, c = (axis + 2) % 3;
-      const std::uint64_t pb = p + ratio * unit[static_cast<std::size_t>(b)], pc = p + ratio * unit[static_cast<std::size_t>(c)];
-      if (edge_split(p, b) || edge_split(p, c) || edge_split(pb, c) || edge_split(pc, b)) return FaceKind::Fan;
-      return FaceKind::Kuhn;
-    };
-    // The face's triangles (lattice keys), and the lattice points they use.
-    auto face_triangles = [&](std::uint64_t p, int axis, std::vector<std::array<std::uint64_t, 3>>& out_triangles) {
-      const int b = std::min((axis + 1) % 3, (axis + 2) % 3), c = std::max((axis + 1) % 3, (axis + 2) % 3);
-      const std::uint64_t eb = unit[static_cast<std::size_t>(b)], ec = unit[static_cast<std::size_t>(c)];
-      const auto r = static_cast<std::uint64_t>(ratio);
-      const FaceKind kind = face_kind(p, axis);
-      if (kind == FaceKind::Fine) {
-        for (std::uint64_t v = 0; v < r; ++v)
-          for (std::uint64_t u = 0; u < r; ++u) {
-            const std::uint64_t q = p + u * eb + v * ec;
-            out_triangles.push_back({q, q + eb, q + eb + ec});
-            out_triangles.push_back({q, q + ec, q + eb + ec});
+    const auto& cell_in_grid = coarse_cell_in_grid;
+    near_refined.clear();
+    for (std::uint64_t cell : sorted_refined) {
+      const auto i = grid.index(cell);
+      for (std::int64_t dk = -1; dk <= 1; ++dk)
+        for (std::int64_t dj = -1; dj <= 1; ++dj)
+          for (std::int64_t di = -1; di <= 1; ++di) {
+            const std::array<std::int64_t, 3> j{i[0] + ratio * di, i[1] + ratio * dj, i[2] + ratio * dk};
+            if (cell_in_grid(j)) near_refined.insert(grid.key(j[0], j[1], j[2]));
           }
-      } else if (kind == FaceKind::Kuhn) {
-        out_triangles.push_back({p, p + r * eb, p + r * eb + r * ec});
-        out_triangles.push_back({p, p + r * ec, p + r * eb + r * ec});
-      } else {
-        const std::uint64_t centre = p + (r / 2) * (eb + ec);
-        // The border, counter-clockwise in (b, c): four edges, each whole or in fine steps.
-        const std::array<std::pair<std::uint64_t, int>, 4> sides{{{p, b}, {p + r * eb, c}, {p + r * ec, b}, {p, c}}};
-        std::vector<std::uint64_t> loop;
-        for (int s = 0; s < 4; ++s) {
-          const auto [start, along] = sides[static_cast<std::size_t>(s)];
-          const std::uint64_t step = unit[static_cast<std::size_t>(along)];
-          const bool forward = s < 2;
-          const std::uint64_t from = forward ? start : start + r * step;
-          const std::int64_t count = edge_split(start, along) ? ratio : 1;
-          const std::uint64_t stride = (r / static_cast<std::uint64_t>(count)) * step;
-          for (std::int64_t k = 0; k < count; ++k)
-            loop.push_back(forward ? from + static_cast<std::uint64_t>(k) * stride : from - static_cast<std::uint64_t>(k) * stride);
-        }
-        for (std::size_t k = 0; k < loop.size(); ++k) out_triangles.push_back({centre, loop[k], loop[(k + 1) % loop.size()]});
+    }
+    // The leaves inside the refined cells, level by level, and their lattice points.
+    std::vector<std::pair<std::uint64_t, std::int64_t>> fine_leaves;
+    {
+      std::vector<std::uint64_t> parents = sorted_refined;
+      for (std::size_t l = 1; l < levels; ++l) {
+        const std::int64_t s = level_size[l], n = level_size[l - 1] / s;
+        std::vector<std::uint64_t> next_parents;
+        for (std::uint64_t parent : parents)
+          for (std::int64_t k = 0; k < n; ++k)
+            for (std::int64_t j = 0; j < n; ++j)
+              for (std::int64_t i = 0; i < n; ++i) {
+                const std::uint64_t child = offset_key(parent, i * s, j * s, k * s);
+                if (l + 1 < levels && split[l].count(child)) next_parents.push_back(child);
+                else fine_leaves.emplace_back(child, s);
+              }
+        parents = std::move(next_parents);
       }
-      return kind;
-    };
-    // The lattice points a coarse cell's tetrahedra use, and whether it is a transition cell.
-    auto cell_points = [&](std::uint64_t cell, std::vector<std::uint64_t>& corners, std::vector<std::uint64_t>& centres) {
-      bool transition = false;
-      std::vector<std::array<std::uint64_t, 3>> face;
-      for (int axis = 0; axis < 3; ++axis)
-        for (int side = 0; side < 2; ++side) {
-          face.clear();
-          const std::uint64_t p = side ? cell + static_cast<std::uint64_t>(ratio) * unit[static_cast<std::size_t>(axis)] : cell;
-          const FaceKind kind = face_triangles(p, axis, face);
-          transition = transition || kind != FaceKind::Kuhn;
-          for (const auto& t : face)
-            for (std::uint64_t k : t) corners.push_back(k);
-          if (kind == FaceKind::Fan) centres.push_back(face.front()[0]);
-        }
-      if (transition) centres.push_back(offset_key(cell, ratio / 2, ratio / 2, ratio / 2));
-      return transition;
-    };
+    }
+    fine_vertices.clear();
+    for (const auto& [cell, size] : fine_leaves)
+      for (int c = 0; c < 8; ++c) fine_vertices.insert(corner_key(cell, c, size));
+    constexpr std::size_t kLeafChunk = 256;
+    for (std::size_t l = levels; l-- > 1;) {
+      const std::int64_t s = level_size[l];
+      std::vector<std::uint64_t> leaves;
+      for (const auto& [cell, size] : fine_leaves)
+        if (size == s) leaves.push_back(cell);
+      const std::size_t n_chunks = (leaves.size() + kLeafChunk - 1) / kLeafChunk;
+      std::vector<std::vector<std::uint64_t>> chunk_corners(n_chunks), chunk_centres(n_chunks);
+      tbb::parallel_for(std::size_t{0}, n_chunks, [&](std::size_t c) {
+        for (std::size_t k = c * kLeafChunk; k < std::min(leaves.size(), (c + 1) * kLeafChunk); ++k)
+          cell_points(leaves[k], s, chunk_corners[c], chunk_centres[c]);
+      });
+      std::vector<std::uint64_t> corners, centres;
+      for (std::size_t c = 0; c < n_chunks; ++c) {
+        corners.insert(corners.end(), chunk_corners[c].begin(), chunk_corners[c].end());
+        centres.insert(centres.end(), chunk_centres[c].begin(), chunk_centres[c].end());
+      }
+      label_all(std::move(corners), s);
+      if (s > 1) label_all(std::move(centres), s / 2);
+    }
+    if (only_width > 0) {
+      polygons.clear();
+      cell_of.clear();
+      std::vector<std::pair<std::uint64_t, std::int64_t>> leaves;
+      for (const auto& leaf : fine_leaves)
+        if (leaf.second == only_width) leaves.push_back(leaf);
+      std::sort(leaves.begin(), leaves.end());
+      march_cells(leaves, [&](std::size_t k, std::uint64_t cell, std::vector<ContourPolygon>& out) { march_leaf(leaves[k].first, leaves[k].second, cell, out); });
+      cross_new_edges();
+      return;
+    }
     // Coarse cells of the complex: the unrefined ones of the coarse grid, and any the surface
-    // reaches across a face of the complex's border whose points disagree (fan faces and fine
+    // reaches across a face of the complex's border whose points disagree (fan faces and split
     // faces have points the coarse grid did not look at).
     std::unordered_set<std::uint64_t> coarse;
     for (std::uint64_t cell : sorted_cells)
@@ -964,7 +1139,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
       tbb::parallel_for(std::size_t{0}, n_chunks, [&](std::size_t c) {
         const auto range = chunk_range(c);
         for (std::size_t k = range.first; k < range.second; ++k)
-          if (!refined.count(grow_from[k])) cell_points(grow_from[k], chunk_corners[c], chunk_centres[c]);
+          if (!refined.count(grow_from[k])) cell_points(grow_from[k], ratio, chunk_corners[c], chunk_centres[c]);
       });
       std::vector<std::uint64_t> corners, centres;
       for (std::size_t c = 0; c < n_chunks; ++c) {
@@ -991,7 +1166,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
               const std::uint64_t neighbour = grid.key(j[0], j[1], j[2]);
               if (refined.count(neighbour) || coarse.count(neighbour)) continue;
               face.clear();
-              face_triangles(side ? neighbour : cell, axis, face);
+              face_triangles(side ? neighbour : cell, axis, ratio, face, nullptr);
               int in = 0, count = 0;
               for (const auto& t : face)
                 for (std::uint64_t key : t) {
@@ -1012,41 +1187,26 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
                            "cell_size");
       grow_from = std::move(grown);
     }
-    // The complex's tetrahedra, cell by cell: fine cells of the refined ones, coarse cells Kuhn
-    // or coned from their centres.
+    // The complex's tetrahedra, cell by cell: Kuhn's or coned from the cell's centre.
     polygons.clear();
     cell_of.clear();
     std::vector<std::pair<std::uint64_t, std::int64_t>> complex;
     for (std::uint64_t cell : coarse) complex.emplace_back(cell, ratio);
-    for (std::uint64_t cell : sorted_refined)
-      for (std::int64_t k = 0; k < ratio; ++k)
-        for (std::int64_t j = 0; j < ratio; ++j)
-          for (std::int64_t i = 0; i < ratio; ++i) complex.emplace_back(offset_key(cell, i, j, k), 1);
+    complex.insert(complex.end(), fine_leaves.begin(), fine_leaves.end());
     std::sort(complex.begin(), complex.end());
-    march_cells(complex, [&](std::size_t k, std::uint64_t cell, std::vector<ContourPolygon>& out) {
-      const std::uint64_t low = complex[k].first;
-      const std::int64_t size = complex[k].second;
-      bool transition = false;
-      if (size == ratio)
-        for (int axis = 0; axis < 3 && !transition; ++axis)
-          for (int side = 0; side < 2 && !transition; ++side)
-            transition = face_kind(side ? low + static_cast<std::uint64_t>(ratio) * unit[static_cast<std::size_t>(axis)] : low, axis) != FaceKind::Kuhn;
-      if (!transition) {
-        march_cube(low, size, cell, out);
-        return;
-      }
-      const std::uint64_t centre = offset_key(low, ratio / 2, ratio / 2, ratio / 2);
-      std::vector<std::array<std::uint64_t, 3>> face;
-      for (int axis = 0; axis < 3; ++axis)
-        for (int side = 0; side < 2; ++side) {
-          face.clear();
-          face_triangles(side ? low + static_cast<std::uint64_t>(ratio) * unit[static_cast<std::size_t>(axis)] : low, axis, face);
-          for (const auto& t : face) march({centre, t[0], t[1], t[2]}, cell, out);
-        }
-    });
+    march_cells(complex, [&](std::size_t k, std::uint64_t cell, std::vector<ContourPolygon>& out) { march_leaf(complex[k].first, complex[k].second, cell, out); });
     stats.grid_cells = static_cast<std::int64_t>(complex.size());
-    // Crossings of the edges the complex uses; those of the coarse grid's edges are kept.
+    // Crossings of the edges the complex uses; those of earlier complexes' edges are kept.
     cross_new_edges();
+  };
+  auto build_complex = [&]() {
+    // The cells of each level between coarse and unit where the contour bends: split (their
+    // polygons and crossings alone are made to find them).
+    for (std::size_t l = 1; l + 1 < levels; ++l) {
+      make_complex(level_size[l]);
+      for (std::uint64_t cell : bent_cells(level_size[l])) split[l].insert(cell);
+    }
+    make_complex(0);
     std::vector<int> renumber(edges.size(), -1);
     crossings.clear();
     for (ContourPolygon& polygon : polygons)
@@ -1059,10 +1219,10 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         v = renumber[static_cast<std::size_t>(v)];
       }
   };
-  // With adaptive cells, the coarse cells holding edges that the verification finds farther
-  // than the tolerance from the boundary (a feature between the coarse corners: a thin fin, a
-  // crease the coarse crossings did not show) and their neighbours are refined too, and the
-  // contour is made again; at most twice.
+  // With adaptive cells, the cells holding edges that the verification finds farther than the
+  // tolerance from the boundary (a feature between the cells' corners: a thin fin, a crease the
+  // crossings did not show) and their neighbours of the same width are split down to unit
+  // cells, and the contour is made again; at most twice.
   const int max_adaptations = ratio > 1 ? 2 : 0;
   std::vector<Eigen::Vector3d> beyond_points;
   double checks_total = 0;
@@ -1071,35 +1231,53 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   SelfIntersectionRecord self_intersection_record;
   // The refinement's splits likewise: most edges of a contour made again have the same two ends.
   SheetRefinementMemory refinement_memory;
-  // Refines the coarse cells holding `beyond_points` and their neighbours; false if all were
-  // refined already.
+  // Splits the cells holding `beyond_points` and their neighbours down to unit cells; false if
+  // all were unit cells already.
   // The cells to split are decided against the cells split before this call, not against the
   // neighbours this call adds: `beyond_points` arrive in the order the parallel verification
   // found them, and skipping a point whose cell an earlier point's neighbourhood had just split
   // made the complex (and Fig. 5's output) depend on thread timing.
   auto refine_cells_at = [&] {
-    const std::size_t refined_before = refined.size();
-    std::vector<std::array<std::int64_t, 3>> centres;
+    std::size_t split_before = 0;
+    for (const auto& s : split) split_before += s.size();
+    std::vector<std::pair<LatticeIndex, std::int64_t>> centres;
     for (const Eigen::Vector3d& p : beyond_points) {
-      std::array<std::int64_t, 3> i{};
+      LatticeIndex u{};
       for (std::size_t d = 0; d < 3; ++d)
-        i[d] = ratio * static_cast<std::int64_t>(std::floor((p[static_cast<Eigen::Index>(d)] - grid.origin[static_cast<Eigen::Index>(d)]) / coarse_h));
-      // Where the edge lies in fine cells already, refining more would not change it.
-      if (refined.count(grid.key(std::clamp<std::int64_t>(i[0], 0, grid.n[0] - 1), std::clamp<std::int64_t>(i[1], 0, grid.n[1] - 1),
-                                 std::clamp<std::int64_t>(i[2], 0, grid.n[2] - 1))))
-        continue;
-      centres.push_back(i);
+        u[d] = std::clamp<std::int64_t>(
+            static_cast<std::int64_t>(std::floor((p[static_cast<Eigen::Index>(d)] - grid.origin[static_cast<Eigen::Index>(d)]) / grid.h)), 0,
+            grid.n[d] - 2);
+      // Where the edge lies in unit cells already, refining more would not change it.
+      const std::int64_t s = leaf_size(u);
+      if (s > 1) centres.emplace_back(floor_to(u, s), s);
     }
-    for (const std::array<std::int64_t, 3>& i : centres)
+    for (const auto& [i, s] : centres) {
+      const std::size_t l = level_of(s);
       for (std::int64_t dk = -1; dk <= 1; ++dk)
         for (std::int64_t dj = -1; dj <= 1; ++dj)
           for (std::int64_t di = -1; di <= 1; ++di) {
-            const std::array<std::int64_t, 3> j{i[0] + ratio * di, i[1] + ratio * dj, i[2] + ratio * dk};
+            const LatticeIndex j{i[0] + s * di, i[1] + s * dj, i[2] + s * dk};
             bool in_grid = true;
-            for (std::size_t d = 0; d < 3; ++d) in_grid = in_grid && j[d] >= 0 && j[d] <= grid.n[d] - 1 - ratio;
-            if (in_grid) refined.insert(grid.key(j[0], j[1], j[2]));
+            for (std::size_t d = 0; d < 3; ++d) in_grid = in_grid && j[d] >= 0 && j[d] <= grid.n[d] - 1 - s;
+            if (!in_grid) continue;
+            // Its ancestors, itself and its descendants down to unit cells.
+            for (std::size_t a = 0; a < l; ++a) split[a].insert(index_key(floor_to(j, level_size[a])));
+            std::vector<std::pair<std::uint64_t, std::size_t>> todo{{index_key(j), l}};
+            while (!todo.empty()) {
+              const auto [cell, level] = todo.back();
+              todo.pop_back();
+              if (level + 1 >= levels) continue;
+              split[level].insert(cell);
+              const std::int64_t child = level_size[level + 1], n = level_size[level] / child;
+              for (std::int64_t k = 0; k < n; ++k)
+                for (std::int64_t jj = 0; jj < n; ++jj)
+                  for (std::int64_t ii = 0; ii < n; ++ii) todo.emplace_back(offset_key(cell, ii * child, jj * child, k * child), level + 1);
+            }
           }
-    return refined.size() > refined_before;
+    }
+    std::size_t split_after = 0;
+    for (const auto& s : split) split_after += s.size();
+    return split_after > split_before;
   };
   for (int adaptation = 0;; ++adaptation) {
   if (ratio > 1) {

@@ -120,10 +120,12 @@ TEST(ImageContouring, InferredLabelsGiveTheSameContourWithFewerQueries) {
 }
 
 // Adaptive cells (coarse_ratio 4): a cube turned off the grid's axes, its superset its own faces,
-// has creases along its twelve edges. Only the coarse cells near them are split into fine ones,
-// and the complex of fine cells, coned transition cells and Kuhn-split coarse cells is
-// conforming: the contour is one closed, oriented sphere whatever the cells next to each other,
-// every vertex lies on the cube, and the chamfers along the edges are those of the fine cells.
+// has creases along its twelve edges. Only the coarse cells near them are split, by halves
+// (4, 2, 1) or straight into unit cells (halving_levels off), and the complex of cells of every
+// width, coned transition cells and Kuhn-split cells is conforming: the contour is one closed,
+// oriented sphere whatever the cells next to each other, every vertex lies on the cube, and the
+// chamfers along the edges are those of the unit cells. Ratio 8 (4 widths: 8, 4, 2, 1) and ratio
+// 6 (6, then unit cells: a half of 3 has no centre on the lattice) too.
 TEST(ImageContouring, AdaptiveCellsAreFineOnlyAtTheCreasesAndTheContourStaysClosed) {
   const Eigen::Matrix3d turn = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX())).toRotationMatrix();
   TriangleMesh superset;
@@ -151,11 +153,15 @@ TEST(ImageContouring, AdaptiveCellsAreFineOnlyAtTheCreasesAndTheContourStaysClos
     ++calls;
     return std::optional<bool>((turn.transpose() * x).cwiseAbs().maxCoeff() <= 0.5);
   };
-  std::array<TrimmedBoundary, 3> b;  // uniform fine, uniform coarse, adaptive
-  for (int k = 0; k < 3; ++k) {
+  // uniform fine, uniform coarse, adaptive by halves, adaptive straight to unit cells, ratio 8
+  // by halves, ratio 6.
+  constexpr int kCases = 6;
+  std::array<TrimmedBoundary, kCases> b;
+  for (int k = 0; k < kCases; ++k) {
     ImageContouringOptions options;
     options.cell_size = k == 1 ? 0.04 : 0.01;
-    options.coarse_ratio = k == 2 ? 4 : 1;
+    options.coarse_ratio = std::array<int, kCases>{1, 1, 4, 4, 8, 6}[static_cast<std::size_t>(k)];
+    options.halving_levels = k != 3;
     calls = 0;
     b[static_cast<std::size_t>(k)] = contour_image_boundary(superset, {}, inside, options);
     const SupersetTrimmingStats& st = b[static_cast<std::size_t>(k)].stats;
@@ -169,19 +175,26 @@ TEST(ImageContouring, AdaptiveCellsAreFineOnlyAtTheCreasesAndTheContourStaysClos
     for (const auto& x : b[static_cast<std::size_t>(k)].mesh.positions)
       EXPECT_NEAR((turn.transpose() * x).cwiseAbs().maxCoeff(), 0.5, 1e-9) << k;
   }
-  const SupersetTrimmingStats &fine = b[0].stats, &coarse = b[1].stats, &adaptive = b[2].stats;
+  const SupersetTrimmingStats &fine = b[0].stats, &coarse = b[1].stats, &adaptive = b[2].stats, &two_level = b[3].stats;
   EXPECT_EQ(fine.grid_cells_refined, 0);
   EXPECT_GT(adaptive.grid_cells_refined, 0);
-  // Fine cells only near the edges: far fewer membership tests and triangles than the uniform
-  // fine grid.
-  EXPECT_LT(adaptive.membership_queries, fine.membership_queries / 2);
-  EXPECT_LT(b[2].mesh.num_triangles(), b[0].mesh.num_triangles() / 2);
-  // The volume lost to chamfers along the 12 edges (about 12 x h^2 / 4 for cells of size h):
-  // the adaptive contour's is the fine grid's, not the coarse one's.
+  // The same coarse cells refined; by halves, the parts of them away from the crease keep cells
+  // twice the unit width.
+  EXPECT_EQ(adaptive.grid_cells_refined, two_level.grid_cells_refined);
+  EXPECT_LT(adaptive.grid_cells, two_level.grid_cells * 3 / 4);
   const double diagonal = std::sqrt(3.0);
+  for (int k = 2; k < kCases; ++k) {
+    const SupersetTrimmingStats& st = b[static_cast<std::size_t>(k)].stats;
+    // Unit cells only near the edges: far fewer membership tests and triangles than the uniform
+    // fine grid.
+    EXPECT_LT(st.membership_queries, fine.membership_queries / 2) << k;
+    EXPECT_LT(b[static_cast<std::size_t>(k)].mesh.num_triangles(), b[0].mesh.num_triangles() / 2) << k;
+    // The volume lost to chamfers along the 12 edges (about 12 x h^2 / 4 for cells of size h):
+    // the adaptive contour's is the fine grid's, not the coarse one's.
+    EXPECT_LT(1 - st.volume, 12 * 0.5 * std::pow(0.01 * diagonal, 2)) << k;
+    EXPECT_GT(1 - coarse.volume, 2 * (1 - st.volume)) << k;
+  }
   EXPECT_LT(1 - fine.volume, 12 * 0.5 * std::pow(0.01 * diagonal, 2));
-  EXPECT_LT(1 - adaptive.volume, 12 * 0.5 * std::pow(0.01 * diagonal, 2));
-  EXPECT_GT(1 - coarse.volume, 2 * (1 - adaptive.volume));
   ImageContouringOptions odd;
   odd.coarse_ratio = 3;
   EXPECT_THROW(contour_image_boundary(superset, {}, inside, odd), InvalidInput);

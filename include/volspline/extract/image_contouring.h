@@ -54,6 +54,10 @@ struct ImageContouringOptions {
   /// "Adaptive cells"). Meant with the refinement toward the sheets, which makes the coarse
   /// cells' chords accurate.
   int coarse_ratio = 1;
+  /// With adaptive cells: split a coarse cell by halves, level by level, only where the contour
+  /// still bends at that width (an octree; ratio 6: straight into unit cells after the coarse
+  /// level); false: every split cell straight into ratio^3 unit cells.
+  bool halving_levels = true;
   /// Budget of distinct grid cells (InvalidInput beyond it: choose a larger cell size).
   std::int64_t max_cells = 20000000;
   /// Tetrahedra whose vertices' sheet normals differ by more than this get a crease vertex
