@@ -48,10 +48,10 @@ struct ImageContouringOptions {
   /// Bisection steps along a grid edge the superset does not cross.
   int bisection_steps = 12;
   /// Adaptive cells: 1, a uniform grid of `cell_size`; an even number up to 16, cells this many
-  /// times wider, split into ratio^3 cells of `cell_size` where the contour bends by more than
-  /// `crease_angle_degrees` or a vertex found no sheet (and next to such cells), with coned
-  /// transition cells in between so that the complex stays conforming (docs/envelopes.md,
-  /// "Adaptive cells"). Meant with the refinement toward the sheets, which makes the coarse
+  /// times wider, split down to cells of `cell_size` where the contour bends by more than
+  /// `crease_angle_degrees` or a vertex found no sheet (by halves, see `halving_levels`), with
+  /// coned transition cells in between so that the complex stays conforming (docs/envelopes.md,
+  /// "Adaptive cells"). Meant with the refinement toward the sheets, which makes the wider
   /// cells' chords accurate.
   int coarse_ratio = 1;
   /// With adaptive cells: split a coarse cell by halves, level by level, only where the contour
