@@ -58,6 +58,46 @@ void check_derivatives(const TensorSpline<D>& s, std::mt19937& rng) {
   }
 }
 
+// The grid evaluation (the general sum-factorisation recurrence) at every point of `samples`
+// against evaluate_derivatives at that point (the fixed-size kernels where the degrees have
+// them), value and partials up to `order`.
+template <int D>
+void expect_grid_equals_single_evaluations(const TensorSpline<D>& s, const std::array<std::vector<double>, D>& samples, int order,
+                                          double tolerance) {
+  const auto grid = s.evaluate_grid(samples, order);
+  const std::size_t n_alpha = derivative_multi_indices<D>(order).size();
+  std::size_t points = 1;
+  for (const auto& v : samples) points *= v.size();
+  const int k = s.dimension();
+  for (std::size_t pt = 0; pt < points; ++pt) {
+    std::array<double, D> t{};
+    std::size_t rest = pt;
+    for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
+      t[d] = samples[d][rest % samples[d].size()];
+      rest /= samples[d].size();
+    }
+    const auto single = s.evaluate_derivatives(t, order);
+    for (std::size_t a = 0; a < n_alpha; ++a)
+      for (int c = 0; c < k; ++c) {
+        const double g = grid[(a * points + pt) * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
+        const double x = single[a * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
+        ASSERT_NEAR(g, x, tolerance * (1 + std::abs(x))) << "D=" << D << " order " << order << " point " << pt << " alpha " << a;
+      }
+  }
+}
+
+// Three random parameters per direction and the first interior breakpoint (a knot).
+template <int D>
+std::array<std::vector<double>, D> random_samples_and_a_knot(const TensorSpline<D>& s, std::mt19937& rng) {
+  std::array<std::vector<double>, D> samples;
+  for (int d = 0; d < D; ++d) {
+    std::uniform_real_distribution<double> at(s.domain_min(d), s.domain_max(d));
+    for (int i = 0; i < 3; ++i) samples[static_cast<std::size_t>(d)].push_back(at(rng));
+    samples[static_cast<std::size_t>(d)].push_back(s.knot_vector(d).breakpoints()[1]);
+  }
+  return samples;
+}
+
 TEST(TensorSpline, DerivativeMultiIndexOrder) {
   const auto a = derivative_multi_indices<3>(2);
   const std::vector<std::array<int, 3>> expected{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 0},
@@ -121,27 +161,7 @@ TEST(TensorSpline, GridEvaluationEqualsScatteredEvaluation) {
         samples[static_cast<std::size_t>(d)].push_back(s.domain_min(d) + (s.domain_max(d) - s.domain_min(d)) * i / (n - 1));
       samples[static_cast<std::size_t>(d)].push_back(s.knot_vector(d).breakpoints()[1]);  // a knot
     }
-    const int order = 2;
-    const auto grid = s.evaluate_grid(samples, order);
-    const std::size_t n_alpha = derivative_multi_indices<D>(order).size();
-    std::size_t points = 1;
-    for (const auto& v : samples) points *= v.size();
-    const int k = s.dimension();
-    for (std::size_t pt = 0; pt < points; ++pt) {
-      std::array<double, D> t{};
-      std::size_t rest = pt;
-      for (int d = 0; d < D; ++d) {
-        t[static_cast<std::size_t>(d)] = samples[static_cast<std::size_t>(d)][rest % samples[static_cast<std::size_t>(d)].size()];
-        rest /= samples[static_cast<std::size_t>(d)].size();
-      }
-      const auto single = s.evaluate_derivatives(t, order);
-      for (std::size_t a = 0; a < n_alpha; ++a)
-        for (int c = 0; c < k; ++c) {
-          const double g = grid[(a * points + pt) * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
-          const double x = single[a * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
-          ASSERT_NEAR(g, x, 1e-11 * (1 + std::abs(x))) << "point " << pt << " alpha " << a;
-        }
-    }
+    expect_grid_equals_single_evaluations<D>(s, samples, 2, 1e-11);
   };
   check(random_spline<1>(rng, {3}, 4, 2, false));
   check(random_spline<2>(rng, {3, 2}, 3, 3, true, false));
@@ -159,32 +179,8 @@ TEST(TensorSpline, FourVariateValueAndPartialsToOrderTwoEqualTheGeneralRecurrenc
   std::mt19937 rng(15);
   auto check = [&](const TensorSpline<4>& s) {
     check_derivatives(s, rng);
-    std::array<std::vector<double>, 4> samples;
-    for (int d = 0; d < 4; ++d) {
-      std::uniform_real_distribution<double> at(s.domain_min(d), s.domain_max(d));
-      for (int i = 0; i < 3; ++i) samples[static_cast<std::size_t>(d)].push_back(at(rng));
-      samples[static_cast<std::size_t>(d)].push_back(s.knot_vector(d).breakpoints()[1]);
-    }
-    for (int order = 0; order <= 2; ++order) {
-      const auto grid = s.evaluate_grid(samples, order);
-      const std::size_t n_alpha = derivative_multi_indices<4>(order).size(), points = 256;
-      const int k = s.dimension();
-      for (std::size_t pt = 0; pt < points; ++pt) {
-        std::array<double, 4> t{};
-        std::size_t rest = pt;
-        for (std::size_t d = 0; d < 4; ++d) {
-          t[d] = samples[d][rest % 4];
-          rest /= 4;
-        }
-        const auto single = s.evaluate_derivatives(t, order);
-        for (std::size_t a = 0; a < n_alpha; ++a)
-          for (int c = 0; c < k; ++c) {
-            const double g = grid[(a * points + pt) * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
-            const double x = single[a * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
-            ASSERT_NEAR(g, x, 1e-12 * (1 + std::abs(x))) << "order " << order << " point " << pt << " alpha " << a;
-          }
-      }
-    }
+    const auto samples = random_samples_and_a_knot(s, rng);
+    for (int order = 0; order <= 2; ++order) expect_grid_equals_single_evaluations<4>(s, samples, order, 1e-12);
   };
   for (int p = 1; p <= 3; ++p) {
     check(random_spline<4>(rng, {p, p, p, 1}, 2, 3, false));
@@ -208,27 +204,8 @@ TEST(TensorSpline, FourVariateValueAndPartialsToOrderTwoEqualTheGeneralRecurrenc
 TEST(TensorSpline, ThreeVariateValueAndFirstPartialsEqualTheGeneralRecurrence) {
   std::mt19937 rng(16);
   auto check = [&](const TensorSpline<3>& s) {
-    std::array<std::vector<double>, 3> samples;
-    for (int d = 0; d < 3; ++d) {
-      std::uniform_real_distribution<double> at(s.domain_min(d), s.domain_max(d));
-      for (int i = 0; i < 3; ++i) samples[static_cast<std::size_t>(d)].push_back(at(rng));
-      samples[static_cast<std::size_t>(d)].push_back(s.knot_vector(d).breakpoints()[1]);
-    }
-    for (int order = 0; order <= 1; ++order) {
-      const auto grid = s.evaluate_grid(samples, order);
-      const std::size_t n_alpha = derivative_multi_indices<3>(order).size(), points = 64;
-      const int k = s.dimension();
-      for (std::size_t pt = 0; pt < points; ++pt) {
-        const std::array<double, 3> t{samples[0][pt % 4], samples[1][(pt / 4) % 4], samples[2][pt / 16]};
-        const auto single = s.evaluate_derivatives(t, order);
-        for (std::size_t a = 0; a < n_alpha; ++a)
-          for (int c = 0; c < k; ++c) {
-            const double x = single[a * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)];
-            ASSERT_NEAR(grid[(a * points + pt) * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)], x, 1e-12 * (1 + std::abs(x)))
-                << "order " << order << " point " << pt << " alpha " << a;
-          }
-      }
-    }
+    const auto samples = random_samples_and_a_knot(s, rng);
+    for (int order = 0; order <= 1; ++order) expect_grid_equals_single_evaluations<3>(s, samples, order, 1e-12);
   };
   check(random_spline<3>(rng, {1, 1, 2}, 2, 3, true));
   check(random_spline<3>(rng, {3, 2, 1}, 2, 3, false));
