@@ -48,6 +48,7 @@ struct FitRequest {
   std::string layout = "auto";
   int placement_rounds = KnotOptimisationOptions{}.placement_rounds;
   double spacing_ratio = KnotOptimisationOptions{}.spacing_ratio;
+  bool fixed_primary_knots = false;
 };
 
 // The N and tilt of two-material:N[:TILT] (tilt 0 when absent); N 0 for a malformed name.
@@ -184,6 +185,7 @@ nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& 
   j["knot_optimisation"] = {{"sweeps", k.sweeps},
                             {"vertices_above_threshold", k.vertices_tried},
                             {"vertices_moved", k.vertices_moved},
+                            {"primary_knots_moved", k.primary_knots_moved},
                             {"sweeps_undone", k.undone_sweeps},
                             {"field_normalised_mean_square_before", k.before},
                             {"field_normalised_mean_square_after", k.after}};
@@ -253,6 +255,7 @@ void fit_file(const FitRequest& r) {
   if (!(r.spacing_ratio >= 1 && r.spacing_ratio <= 100))
     throw InvalidInput("expected a spacing ratio from 1 to 100, got " + format_double(r.spacing_ratio), "--spacing-ratio");
   options.knots.spacing_ratio = r.spacing_ratio;
+  options.knots.move_primary_knots = !r.fixed_primary_knots;
   if (!(r.fairing >= 0) || !std::isfinite(r.fairing)) throw InvalidInput("expected a fairing weight >= 0, got " + format_double(r.fairing), "--fairing");
   options.fit.fairing = r.fairing;
   // An explicit --fairing, 0 too, is kept on grid data.
@@ -332,8 +335,8 @@ void fit_file(const FitRequest& r) {
               << format_double(p.held_out_before) << " -> " << format_double(p.held_out_after) << ")\n";
     const KnotOptimisationReport& k = statistics.knot_optimisation;
     if (r.knots == "optimise")
-      std::cout << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved in " << k.sweeps
-              << " sweeps, normalised field mean square " << format_double(k.before) << " -> " << format_double(k.after) << "\n";
+      std::cout << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved ("
+              << k.primary_knots_moved << " with their primary knot) in " << k.sweeps << " sweeps, normalised field mean square " << format_double(k.before) << " -> " << format_double(k.after) << "\n";
   }
   const AdaptiveRefinementReport& refinement = statistics.refinement;
   if (r.error > 0) {
@@ -390,6 +393,9 @@ void add_fit_command(CLI::App& app) {
                   "error is kept if better than the first fit (default 3; 0: sub-knots only)");
   cmd->add_option("--spacing-ratio", r->spacing_ratio,
                   "with --knots place or optimise: the placed knots' spacing stays within this factor of its median (default 2.5)");
+  cmd->add_flag("--fixed-primary-knots", r->fixed_primary_knots,
+               "with --knots optimise: the local step moves the sub-knots only (by default a primary knot moves with its "
+               "sub-knots where that leaves the domain unchanged: inside, within a flat boundary, along a straight edge)");
   cmd->add_option("--png", r->png, "also write an X-ray picture of the first fitted attribute (.png)");
   cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
   r->fairing_option = cmd->add_option("--fairing", r->fairing,

@@ -32,7 +32,7 @@ Eigen::SparseMatrix<double> basis_matrix(const DmsSplineVolume& volume, const st
   DmsSplineEvaluator evaluator(volume);
   std::vector<Eigen::Triplet<double>> entries;
   for (std::size_t s = 0; s < samples.size(); ++s)
-    evaluator.for_each_basis_function(samples[s], [&](int row, double value) {
+    evaluator.for_each_collocation_weight(samples[s], [&](int row, double value) {
       if (value != 0) entries.emplace_back(static_cast<int>(s), row, value);
     });
   Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(samples.size()), volume.control_vector_count());

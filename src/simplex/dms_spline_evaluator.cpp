@@ -304,6 +304,78 @@ void DmsSplineEvaluator::for_each_basis_function(const Eigen::Vector3d& x, const
   }
 }
 
+void DmsSplineEvaluator::for_each_collocation_weight(const Eigen::Vector3d& x, const std::function<void(int, double)>& f) {
+  const DmsSplineVolume& v = *volume_;
+  bool clearly_inside = false;
+  const int located = locate(x, &clearly_inside);
+  if (located < 0) return;
+  if (v.degree() == 0) {
+    f(v.control_row(degree_zero_tetrahedron(x, located), 0), 1.0);
+    return;
+  }
+  if (index_->lower_degree_step && v.degree() == 1) {
+    const int t = degree_zero_tetrahedron(x, located);
+    const std::array<double, 4> lambda = linear_step_weights(x, t, nullptr);
+    for (int m = 0; m < 4; ++m) {
+      std::array<int, 4> beta{};
+      beta[static_cast<std::size_t>(m)] = 1;
+      f(v.control_row(t, dms_multi_index_position(beta, 1)), lambda[static_cast<std::size_t>(m)]);
+    }
+    return;
+  }
+  const auto terms = [&](const Eigen::Vector3d& at, double weight) {
+    if (index_->lower_degree_step) {
+      // The terms evaluate() sums, by the same DMS step from degree n − 1.
+      reaching_tetrahedra(at, scratch_->candidates);
+      index_->keep_part(scratch_->candidates, index_->parts[static_cast<std::size_t>(located)]);
+      for (const int t : scratch_->candidates) {
+        scratch_->lower_basis.evaluate(at, index_->lower_plans[static_cast<std::size_t>(t)], 0, scratch_->values, scratch_->frames);
+        for (std::size_t g = 0; g < index_->raised.size(); ++g) {
+          const double value = weight * scratch_->values.values[g];
+          if (value == 0) continue;
+          const std::array<double, 4>& lambda = scratch_->frames.lambdas[g];
+          for (std::size_t m = 0; m < 4; ++m) f(v.control_row(t, index_->raised[g][m]), value * lambda[m]);
+        }
+      }
+      return;
+    }
+    const std::vector<DmsTetrahedronPlan>& full_plans = index_->full_plans(v);
+    support_candidates(at, scratch_->candidates);
+    index_->keep_part(scratch_->candidates, index_->parts[static_cast<std::size_t>(located)]);
+    for (const int t : scratch_->candidates) {
+      scratch_->basis.evaluate(at, full_plans[static_cast<std::size_t>(t)], 0, scratch_->values);
+      for (int b = 0; b < v.basis_per_tetrahedron(); ++b) f(v.control_row(t, b), weight * scratch_->values.values[static_cast<std::size_t>(b)]);
+    }
+  };
+  if (!clearly_inside && leaves_domain(x, located) && x + boundary_limit_step(x, located) != x) {
+    const Eigen::Vector3d step = boundary_limit_step(x, located);
+    terms(x + step, 2);
+    terms(x + 2 * step, -1);
+    return;
+  }
+  terms(x, 1);
+}
+
+Eigen::Vector3d DmsSplineEvaluator::boundary_limit_step(const Eigen::Vector3d& x, int located) const {
+  const TetrahedralMesh& domain = volume_->domain();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 4; ++c)
+    centroid += domain.points[static_cast<std::size_t>(domain.tetrahedra[static_cast<std::size_t>(located)][static_cast<std::size_t>(c)])] / 4;
+  return kBoundaryLimitStep * (centroid - x);
+}
+
+std::array<double, 4> DmsSplineEvaluator::linear_step_weights(const Eigen::Vector3d& x, int t, Eigen::Matrix3d* inverse_out) const {
+  const DmsSplineVolume& v = *volume_;
+  const std::array<int, 4>& tet = v.domain().tetrahedra[static_cast<std::size_t>(t)];
+  const auto corner = [&](int c) -> const Eigen::Vector3d& { return v.domain().points[static_cast<std::size_t>(tet[static_cast<std::size_t>(c)])]; };
+  Eigen::Matrix3d edges;
+  edges << corner(1) - corner(0), corner(2) - corner(0), corner(3) - corner(0);
+  const Eigen::Matrix3d inverse = edges.inverse();  // rows: ∇λ_1..3
+  if (inverse_out) *inverse_out = inverse;
+  const Eigen::Vector3d l = inverse * (x - corner(0));
+  return {1 - l.sum(), l[0], l[1], l[2]};
+}
+
 int DmsSplineEvaluator::degree_zero_tetrahedron(const Eigen::Vector3d& x, int located) const {
   // The half-open rule picks one tetrahedron inside Ω; a point of ∂Ω whose perturbation leaves Ω
   // keeps the closed tetrahedron that holds it.
@@ -351,56 +423,54 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
     for_each_basis_function(x, [&](int row, double value) { out.value += value * control.row(row).transpose(); });
     return;
   }
-  const TetrahedralMesh& domain = v.domain();
-  // Values are continuous (n >= 1), but derivatives may jump across knot planes, and the half-open
-  // rule takes them from the side of the perturbation x + ε(1, ε, ε²). On ∂Ω that side may lie
-  // outside Ω, where the basis no longer sums to 1; there the derivatives come from a point
-  // 1e-9 of the tetrahedron's size inside, on the domain's side of every nearby knot plane.
-  Eigen::Vector3d derivative_point = x;
-  const bool near_face = !clearly_inside;
-  if (order >= 1 && near_face && leaves_domain(x, out.tetrahedron)) {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (int c = 0; c < 4; ++c)
-      centroid += domain.points[static_cast<std::size_t>(domain.tetrahedra[static_cast<std::size_t>(out.tetrahedron)][static_cast<std::size_t>(c)])];
-    derivative_point = x + 1e-9 * (centroid / 4 - x);
+  // Values are continuous (n >= 1), but the half-open rule takes them, and derivatives where they
+  // jump across knot planes, from the side of the perturbation x + ε(1, ε, ε²). On ∂Ω that side
+  // may lie outside Ω, where the basis need not sum to 1 (the tetrahedra outside Ω that would
+  // complete it are missing): there the value is the limit from inside, 2 s(x + d) − s(x + 2d)
+  // along d toward the tetrahedron's centroid (exact for a polynomial piece up to O(|d|²)), and
+  // the derivatives are those at x + d. Degree 1 needs neither (its step lands on the closed
+  // tetrahedron that holds x).
+  const bool linear_step = index_->lower_degree_step && v.degree() == 1;
+  if (!linear_step && !clearly_inside && leaves_domain(x, out.tetrahedron) && x + boundary_limit_step(x, out.tetrahedron) != x) {
+    const int located = out.tetrahedron;
+    const Eigen::Vector3d step = boundary_limit_step(x, located);
+    DmsSplinePoint far;
+    evaluate(x + 2 * step, 0, far);
+    evaluate(x + step, order, out);
+    out.value = 2 * out.value - far.value;
+    out.tetrahedron = located;
+    out.inside = true;
+    return;
   }
-  for (int pass = 0; pass < (derivative_point == x ? 1 : 2); ++pass) {
-    const Eigen::Vector3d& at = pass == 0 ? x : derivative_point;
-    const int pass_order = derivative_point == x ? order : (pass == 0 ? 0 : 1);
-    if (pass == 1) {
-      reaching_tetrahedra(at, scratch_->candidates);
-      index_->keep_part(scratch_->candidates, part);
-    }
-    if (index_->lower_degree_step && v.degree() == 1) {
-      add_linear_step(at, out.tetrahedron, pass_order, pass == 0, out);
-      continue;
-    }
-    if (index_->lower_degree_step) {
-      add_lower_degree_step(at, pass_order, pass == 0, out);
-      continue;
-    }
-    for (const int t : scratch_->candidates) index_->plans[static_cast<std::size_t>(t)].prefetch();
-    for (const int t : scratch_->candidates) {
-      scratch_->basis.evaluate(at, index_->plans[static_cast<std::size_t>(t)], pass_order, scratch_->values);
-      // Plain loops over the control vector's entries: Eigen's products of a row of a dynamic
-      // matrix would evaluate into heap temporaries here, once per basis function.
-      const double* control_data = control.data();
-      const Eigen::Index stride = control.rows();
-      double* value_out = out.value.data();
-      for (int b = 0; b < v.basis_per_tetrahedron(); ++b) {
-        const double value = pass == 0 ? scratch_->values.values[static_cast<std::size_t>(b)] : 0.0;
-        const Eigen::Vector3d* g = pass_order >= 1 ? &scratch_->values.gradients[static_cast<std::size_t>(b)] : nullptr;
-        const bool has_gradient = g != nullptr && (g->x() != 0 || g->y() != 0 || g->z() != 0);
-        if (value == 0.0 && !has_gradient) continue;
-        const double* c = control_data + v.control_row(t, b);
-        for (int k = 0; k < dim; ++k) {
-          const double ck = c[k * stride];
-          value_out[k] += value * ck;
-          if (has_gradient) {
-            out.gradient(k, 0) += ck * g->x();
-            out.gradient(k, 1) += ck * g->y();
-            out.gradient(k, 2) += ck * g->z();
-          }
+  if (linear_step) {
+    add_linear_step(x, out.tetrahedron, order, true, out);
+    return;
+  }
+  if (index_->lower_degree_step) {
+    add_lower_degree_step(x, order, true, out);
+    return;
+  }
+  for (const int t : scratch_->candidates) index_->plans[static_cast<std::size_t>(t)].prefetch();
+  for (const int t : scratch_->candidates) {
+    scratch_->basis.evaluate(x, index_->plans[static_cast<std::size_t>(t)], order, scratch_->values);
+    // Plain loops over the control vector's entries: Eigen's products of a row of a dynamic
+    // matrix would evaluate into heap temporaries here, once per basis function.
+    const double* control_data = control.data();
+    const Eigen::Index stride = control.rows();
+    double* value_out = out.value.data();
+    for (int b = 0; b < v.basis_per_tetrahedron(); ++b) {
+      const double value = scratch_->values.values[static_cast<std::size_t>(b)];
+      const Eigen::Vector3d* g = order >= 1 ? &scratch_->values.gradients[static_cast<std::size_t>(b)] : nullptr;
+      const bool has_gradient = g != nullptr && (g->x() != 0 || g->y() != 0 || g->z() != 0);
+      if (value == 0.0 && !has_gradient) continue;
+      const double* c = control_data + v.control_row(t, b);
+      for (int k = 0; k < dim; ++k) {
+        const double ck = c[k * stride];
+        value_out[k] += value * ck;
+        if (has_gradient) {
+          out.gradient(k, 0) += ck * g->x();
+          out.gradient(k, 1) += ck * g->y();
+          out.gradient(k, 2) += ck * g->z();
         }
       }
     }
@@ -414,13 +484,8 @@ void DmsSplineEvaluator::add_linear_step(const Eigen::Vector3d& x, int located, 
   // vectors at the vertices of Ω, whatever the sub-knots t_{v,1}.
   const DmsSplineVolume& v = *volume_;
   const int t = degree_zero_tetrahedron(x, located);
-  const std::array<int, 4>& tet = v.domain().tetrahedra[static_cast<std::size_t>(t)];
-  const auto corner = [&](int c) -> const Eigen::Vector3d& { return v.domain().points[static_cast<std::size_t>(tet[static_cast<std::size_t>(c)])]; };
-  Eigen::Matrix3d edges;
-  edges << corner(1) - corner(0), corner(2) - corner(0), corner(3) - corner(0);
-  const Eigen::Matrix3d inverse = edges.inverse();  // rows: ∇λ_1..3
-  const Eigen::Vector3d l = inverse * (x - corner(0));
-  const std::array<double, 4> lambda = {1 - l.sum(), l[0], l[1], l[2]};
+  Eigen::Matrix3d inverse;
+  const std::array<double, 4> lambda = linear_step_weights(x, t, &inverse);
   const std::array<Eigen::Vector3d, 4> gradient = {-inverse.colwise().sum().transpose(), inverse.row(0).transpose(),
                                                    inverse.row(1).transpose(), inverse.row(2).transpose()};
   for (int m = 0; m < 4; ++m) {

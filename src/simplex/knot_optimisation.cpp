@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "volspline/core/error.h"
+#include "volspline/mesh/tetrahedral_mesh.h"
 #include "volspline/simplex/adaptive_refinement.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
 #include "volspline/simplex/dms_tetrahedron_basis.h"
@@ -18,6 +19,67 @@ namespace {
 using KnotMoveKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 KnotMoveKernel::Point_3 knot_move_point(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+double knot_move_volume(const TetrahedralMesh& domain, const std::array<int, 4>& t) {
+  const auto& p = domain.points;
+  const Eigen::Vector3d a = p[static_cast<std::size_t>(t[0])];
+  return (p[static_cast<std::size_t>(t[1])] - a).cross(p[static_cast<std::size_t>(t[2])] - a).dot(p[static_cast<std::size_t>(t[3])] - a) / 6;
+}
+
+// Directions in which each primary knot may move without changing Ω (docs/fitting.md, "The local
+// step"): every direction inside Ω; within the plane where all its boundary faces lie; along the
+// line where they lie in two planes (a straight feature line: §5.3's "primary knots on feature
+// lines move only along them"); none elsewhere (corners, curved boundary). The union of a
+// vertex's tetrahedra is the cone from it over its link, so it is unchanged as long as the vertex
+// stays in these directions and every tetrahedron keeps its orientation. Planes and lines are
+// built from the faces' own normals, so a face on x = c moves its vertices with x unchanged
+// exactly.
+std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> primary_knot_directions(const TetrahedralMesh& domain) {
+  std::vector<std::vector<Eigen::Vector3d>> normals(domain.points.size());
+  for (const BoundaryFace& f : boundary_faces(domain)) {
+    const Eigen::Vector3d& a = domain.points[static_cast<std::size_t>(f.vertices[0])];
+    const Eigen::Vector3d n = (domain.points[static_cast<std::size_t>(f.vertices[1])] - a).cross(domain.points[static_cast<std::size_t>(f.vertices[2])] - a);
+    for (int v : f.vertices) normals[static_cast<std::size_t>(v)].push_back(n);
+  }
+  const auto parallel = [](const Eigen::Vector3d& m, const Eigen::Vector3d& n) {
+    return m.dot(n) > 0 && m.cross(n).norm() <= 1e-12 * m.norm() * n.norm();
+  };
+  std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> out(domain.points.size());
+  for (std::size_t v = 0; v < domain.points.size(); ++v) {
+    const std::vector<Eigen::Vector3d>& n = normals[v];
+    if (n.empty()) {
+      out[v] = Eigen::Matrix3d::Identity();
+      continue;
+    }
+    std::vector<Eigen::Vector3d> planes{n[0]};
+    bool flat = true;
+    for (const Eigen::Vector3d& m : n) {
+      if (std::any_of(planes.begin(), planes.end(), [&](const Eigen::Vector3d& q) { return parallel(m, q); })) continue;
+      planes.push_back(m);
+      if (planes.size() > 2) flat = false;
+    }
+    if (!flat || planes[0].norm() == 0) {
+      out[v].resize(3, 0);
+    } else if (planes.size() == 1) {
+      // Two tangents: crossing with the axis least aligned with the normal keeps an axis-parallel
+      // plane's normal coordinate out of both.
+      const Eigen::Vector3d m = planes[0].normalized();
+      Eigen::Index axis = 0;
+      m.cwiseAbs().minCoeff(&axis);
+      const Eigen::Vector3d u = m.cross(Eigen::Vector3d::Unit(axis)).normalized();
+      out[v].resize(3, 2);
+      out[v] << u, m.cross(u);
+    } else {
+      const Eigen::Vector3d d = planes[0].cross(planes[1]);
+      if (d.norm() == 0) {
+        out[v].resize(3, 0);
+      } else {
+        out[v] = d.normalized();
+      }
+    }
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -66,16 +128,6 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
   std::vector<std::vector<int>> rings(domain.points.size());
   for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t)
     for (int v : domain.tetrahedra[t]) rings[static_cast<std::size_t>(v)].push_back(static_cast<int>(t));
-  std::vector<double> shortest(domain.points.size(), INFINITY);
-  for (const auto& tet : domain.tetrahedra)
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        const auto u = static_cast<std::size_t>(tet[static_cast<std::size_t>(a)]), w = static_cast<std::size_t>(tet[static_cast<std::size_t>(b)]);
-        const double e = (domain.points[u] - domain.points[w]).norm();
-        shortest[u] = std::min(shortest[u], e);
-        shortest[w] = std::min(shortest[w], e);
-      }
-
   DmsTetrahedronBasis basis(n);
   DmsBasisValues values;
   for (int sweep = 0; sweep < options.sweeps; ++sweep) {
@@ -108,7 +160,29 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
     report.vertices_tried += chosen.size();
     if (chosen.empty()) break;
 
+    std::vector<double> shortest(domain.points.size(), INFINITY);
+    for (const auto& tet : domain.tetrahedra)
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) {
+          const auto u = static_cast<std::size_t>(tet[static_cast<std::size_t>(a)]), w = static_cast<std::size_t>(tet[static_cast<std::size_t>(b)]);
+          const double e = (domain.points[u] - domain.points[w]).norm();
+          shortest[u] = std::min(shortest[u], e);
+          shortest[w] = std::min(shortest[w], e);
+        }
+    // The planes of the boundary faces at each vertex, (unit outward normal, offset).
+    std::vector<std::vector<Eigen::Vector4d>> face_planes(domain.points.size());
+    for (const BoundaryFace& f : boundary_faces(domain)) {
+      const Eigen::Vector3d& a = domain.points[static_cast<std::size_t>(f.vertices[0])];
+      const Eigen::Vector3d normal =
+          (domain.points[static_cast<std::size_t>(f.vertices[1])] - a).cross(domain.points[static_cast<std::size_t>(f.vertices[2])] - a).normalized();
+      for (int w : f.vertices) face_planes[static_cast<std::size_t>(w)].emplace_back(normal.x(), normal.y(), normal.z(), normal.dot(a));
+    }
+    std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> directions;
+    if (options.move_primary_knots) directions = primary_knot_directions(domain);
+    std::vector<double> volume_before(domain.tetrahedra.size());
+    for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t) volume_before[t] = knot_move_volume(domain, domain.tetrahedra[t]);
     KnotClouds clouds = volume.knots();
+    TetrahedralMesh moved_domain = domain;  // the primary knots as moved so far this sweep
     DmsSplineEvaluator evaluator(volume);
     const Eigen::MatrixXd& control = volume.control_vectors();
     std::size_t moved = 0;
@@ -153,31 +227,56 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
               (p.value[columns[a]] - data.attributes(static_cast<Eigen::Index>(points[j]), static_cast<Eigen::Index>(a))) / range[a];
       }
       const double e = shortest[uv];
-      const Eigen::Vector3d centre = domain.points[uv];
+      const Eigen::Vector3d origin = domain.points[uv];
+      // Free variables: the sub-knots t_1..t_n, then the primary knot's offset along its allowed
+      // directions (none when it stays).
+      const Eigen::Matrix<double, 3, Eigen::Dynamic> along =
+          options.move_primary_knots ? directions[uv] : Eigen::Matrix<double, 3, Eigen::Dynamic>(3, 0);
+      const int free_primary = static_cast<int>(along.cols());
+      const int unknowns = 3 * n + free_primary;
       // The knots of the ring's other clouds, for the minimal distance.
       std::vector<Eigen::Vector3d> others;
       for (int t : ring)
         for (int w : domain.tetrahedra[static_cast<std::size_t>(t)])
           if (w != v)
             for (std::size_t l = 0; l <= static_cast<std::size_t>(n); ++l) others.push_back(clouds.cloud(w)[l]);
+      const auto primary_of = [&](const Eigen::VectorXd& theta) -> Eigen::Vector3d {
+        return free_primary ? Eigen::Vector3d(origin + along * theta.tail(free_primary)) : origin;
+      };
       const auto set = [&](KnotClouds& c, const Eigen::VectorXd& theta) {
         for (int l = 1; l <= n; ++l) c.knots[uv * per + static_cast<std::size_t>(l)] = theta.segment<3>(3 * (l - 1));
+        if (free_primary) c.knots[uv * per] = moved_domain.points[uv] = primary_of(theta);
+      };
+      const auto far_from_others = [&](const Eigen::Vector3d& t) {
+        return std::none_of(others.begin(), others.end(), [&](const Eigen::Vector3d& q) { return (t - q).norm() < options.min_distance * e; });
       };
       const auto feasible = [&](const Eigen::VectorXd& theta, KnotClouds& c) {
+        const Eigen::Vector3d centre = primary_of(theta);
+        if (free_primary && ((centre - origin).norm() > options.primary_radius * e || !far_from_others(centre))) return false;
         for (int l = 1; l <= n; ++l) {
           const Eigen::Vector3d t = theta.segment<3>(3 * (l - 1));
           const double r = (t - centre).norm();
           if (r > options.max_radius * e || r < options.min_distance * e) return false;
           for (int o = 1; o < l; ++o)
             if ((t - theta.segment<3>(3 * (o - 1))).norm() < options.min_distance * e) return false;
-          for (const auto& q : others)
-            if ((t - q).norm() < options.min_distance * e) return false;
-          if (boundary[uv] && evaluator.locate(t) >= 0) return false;  // sub-knots of ∂Ω stay outside Ω (§3.2)
+          if (!far_from_others(t)) return false;
+          // Sub-knots of ∂Ω stay outside Ω (§3.2), and beyond the plane of each boundary face at
+          // the vertex: the supports of the basis functions a tetrahedron outside that face would
+          // add must not reach into Ω, or the basis no longer sums to 1 next to it (a sub-knot
+          // outside Ω but on Ω's side of a face's plane, past a convex edge, breaks it).
+          for (const Eigen::Vector4d& plane : face_planes[uv])
+            if (plane.head<3>().dot(t) <= plane[3] + options.min_distance * e * 1e-3) return false;
+          if (boundary[uv] && evaluator.locate(t) >= 0) return false;
         }
         set(c, theta);
-        return knot_ring_is_valid(domain, c, ring);
+        if (free_primary)
+          for (int t : ring)
+            if (knot_move_volume(moved_domain, domain.tetrahedra[static_cast<std::size_t>(t)]) <
+                options.min_volume_fraction * volume_before[static_cast<std::size_t>(t)])
+              return false;
+        return knot_ring_is_valid(moved_domain, c, ring);
       };
-      Eigen::VectorXd theta(3 * n);
+      Eigen::VectorXd theta = Eigen::VectorXd::Zero(unknowns);
       for (int l = 1; l <= n; ++l) theta.segment<3>(3 * (l - 1)) = clouds.cloud(v)[l];
       const Eigen::VectorXd start = theta;
       KnotClouds trial = clouds;
@@ -187,8 +286,8 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
       double mu = 1e-3;
       const double h = 1e-5 * e;
       for (int iteration = 0; iteration < options.iterations; ++iteration) {
-        Eigen::MatrixXd jacobian(m, 3 * n);
-        for (int p = 0; p < 3 * n; ++p) {
+        Eigen::MatrixXd jacobian(m, unknowns);
+        for (int p = 0; p < unknowns; ++p) {
           Eigen::VectorXd moved_theta = theta;
           moved_theta[p] += h;
           set(trial, moved_theta);
@@ -200,7 +299,7 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
         bool improved = false;
         for (int attempt = 0; attempt < 4 && !improved; ++attempt) {
           Eigen::MatrixXd damped = normal;
-          damped.diagonal() += mu * normal.diagonal() + Eigen::VectorXd::Constant(3 * n, 1e-12 * std::max(normal.diagonal().maxCoeff(), 1e-300));
+          damped.diagonal() += mu * normal.diagonal() + Eigen::VectorXd::Constant(unknowns, 1e-12 * std::max(normal.diagonal().maxCoeff(), 1e-300));
           Eigen::VectorXd delta = -damped.ldlt().solve(gradient);
           if (!delta.allFinite()) break;
           if (delta.norm() > 0.1 * e) delta *= 0.1 * e / delta.norm();
@@ -221,6 +320,7 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
       if (cost < cost_start && theta != start) {
         set(clouds, theta);
         ++moved;
+        if (free_primary && theta.tail(free_primary) != start.tail(free_primary)) ++report.primary_knots_moved;
       } else {
         set(trial, start);
       }
@@ -228,15 +328,20 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
     report.vertices_moved += moved;
     if (moved == 0) break;
     try {
-      DmsSplineVolume optimised(volume.domain(), clouds, volume.sharing(), volume.attribute_names());
-      optimised.control_vectors() = volume.control_vectors();
+      DmsSplineVolume optimised(moved_domain, clouds, volume.sharing(), volume.attribute_names());
+      // The old fit's attributes are the refit's prior; its geometry columns are not: the prior
+      // of the geometry is the identity's blossom for the new knots, which the constructor made
+      // (the old knots' blossom pulled coefficients few data see away from the identity).
+      const Eigen::Index attribute_columns = volume.control_vectors().cols() - 3;
+      optimised.control_vectors().rightCols(attribute_columns) = volume.control_vectors().rightCols(attribute_columns);
       VolumeFitErrors refitted = fit_control_vectors(optimised, data, refit);
       // The identity geometry lies in the spline space of every knot set that meets the DMS
       // conditions, so a refit that does not reproduce it means the moved clouds broke one the
       // local checks do not see (the centroid certificate of eq. 3 is not the whole condition):
       // such a sweep is undone like one that raises the error.
       const bool identity = refitted.normalised_geometric_max <= std::max(1e-18, 100 * errors.normalised_geometric_max);
-      if (identity && mean_normalised_field_error(refitted) <= mean_normalised_field_error(errors)) {
+      // Ω is unchanged by the primary knots' moves; rounding must not lose a data point either.
+      if (identity && refitted.fitted_points == errors.fitted_points && mean_normalised_field_error(refitted) <= mean_normalised_field_error(errors)) {
         volume = std::move(optimised);
         errors = std::move(refitted);
       } else {

@@ -24,7 +24,7 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> parallel_basis_matrix(const DmsSpli
     std::vector<std::pair<int, double>> row;
     for (std::size_t i = b * block; i < std::min(points.size(), (b + 1) * block); ++i) {
       row.clear();
-      evaluator.for_each_basis_function(points[i], [&](int column, double value) {
+      evaluator.for_each_collocation_weight(points[i], [&](int column, double value) {
         if (value != 0) row.emplace_back(column, value);
       });
       // A shared control row appears once per tetrahedron around its domain point: the values

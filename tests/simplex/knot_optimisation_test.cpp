@@ -8,6 +8,7 @@
 #include "volspline/construct/volume_data_examples.h"
 #include "volspline/core/error.h"
 #include "volspline/simplex/adaptive_refinement.h"
+#include "volspline/simplex/dms_spline_evaluator.h"
 #include "volspline/simplex/knot_clouds.h"
 
 namespace volspline {
@@ -26,6 +27,7 @@ TEST(KnotOptimisation, KeepsTheCloudsValidAndNeverRaisesTheError) {
   const VolumeFit fixed = fit_volume_data(data, options);
   options.knots.enabled = true;
   options.knots.placement_rounds = 0;  // the local step alone (the placement moves primary knots)
+  options.knots.move_primary_knots = false;
   const VolumeFit optimised = fit_volume_data(data, options);
   const KnotOptimisationReport& r = optimised.statistics.knot_optimisation;
   EXPECT_GT(r.vertices_tried, 0u);
@@ -38,7 +40,7 @@ TEST(KnotOptimisation, KeepsTheCloudsValidAndNeverRaisesTheError) {
   for (std::size_t t = 0; t < optimised.volume.domain().tetrahedra.size(); ++t)
     for (int v : optimised.volume.domain().tetrahedra[t]) rings[static_cast<std::size_t>(v)].push_back(static_cast<int>(t));
   for (const auto& ring : rings) EXPECT_TRUE(knot_ring_is_valid(optimised.volume.domain(), optimised.volume.knots(), ring));
-  // Primary knots do not move; the domain is the same.
+  // With move_primary_knots off the primary knots do not move; the domain is the same.
   EXPECT_EQ(optimised.volume.domain().points, fixed.volume.domain().points);
   for (std::size_t v = 0; v < optimised.volume.domain().points.size(); ++v)
     EXPECT_EQ(optimised.volume.knots().cloud(static_cast<int>(v))[0], fixed.volume.knots().cloud(static_cast<int>(v))[0]);
@@ -47,6 +49,86 @@ TEST(KnotOptimisation, KeepsTheCloudsValidAndNeverRaisesTheError) {
   if (r.vertices_moved > 0 && r.undone_sweeps == 0) {
     EXPECT_LT(r.after, r.before);
   }
+}
+
+// Grid samples of the cube [0, 1]^3, n per side.
+std::vector<Eigen::Vector3d> knot_test_grid(int n) {
+  std::vector<Eigen::Vector3d> out;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) out.emplace_back(i / (n - 1.0), j / (n - 1.0), k / (n - 1.0));
+  return out;
+}
+
+double knot_test_domain_volume(const TetrahedralMesh& domain) {
+  double sum = 0;
+  for (const auto& t : domain.tetrahedra) {
+    const auto& p = domain.points;
+    const Eigen::Vector3d a = p[static_cast<std::size_t>(t[0])];
+    sum += (p[static_cast<std::size_t>(t[1])] - a).cross(p[static_cast<std::size_t>(t[2])] - a).dot(p[static_cast<std::size_t>(t[3])] - a) / 6;
+  }
+  return sum;
+}
+
+TEST(KnotOptimisation, PrimaryKnotsMoveOnlyWhereTheDomainStaysTheSame) {
+  const VolumeData data = sampled_volume_data(knot_test_grid(14), "f", knot_test_front);
+  VolumeFitOptions options;
+  options.degree = 2;
+  options.domain.primary_knots = 60;
+  options.knots.enabled = true;
+  options.knots.placement_rounds = 0;
+  options.knots.move_primary_knots = false;
+  const VolumeFit sub_knots_only = fit_volume_data(data, options);
+  options.knots.move_primary_knots = true;
+  const VolumeFit optimised = fit_volume_data(data, options);
+  const KnotOptimisationReport& r = optimised.statistics.knot_optimisation;
+  ASSERT_GT(r.primary_knots_moved, 0u);
+  EXPECT_LE(r.after, r.before);
+  const TetrahedralMesh& before = sub_knots_only.volume.domain();
+  const TetrahedralMesh& after = optimised.volume.domain();
+  ASSERT_EQ(before.tetrahedra, after.tetrahedra);
+  ASSERT_EQ(before.points.size(), after.points.size());
+  // Ω is the cube before and after: the same volume, every vertex on a face of the cube keeps
+  // that coordinate exactly (it moved within the face or along the edge), corners stay, and
+  // every data point is still fitted.
+  EXPECT_NEAR(knot_test_domain_volume(after), 1.0, 1e-12);
+  std::size_t moved_inside = 0, moved_on_faces = 0, moved_on_edges = 0;
+  for (std::size_t v = 0; v < before.points.size(); ++v) {
+    int on_faces = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double c = before.points[v][axis];
+      if (c == 0 || c == 1) {
+        ++on_faces;
+        EXPECT_EQ(after.points[v][axis], c) << "vertex " << v << " axis " << axis;
+      }
+    }
+    if (on_faces == 3) {
+      EXPECT_EQ(after.points[v], before.points[v]);
+    }
+    if (after.points[v] != before.points[v]) (on_faces == 0 ? moved_inside : on_faces == 1 ? moved_on_faces : moved_on_edges)++;
+    EXPECT_EQ(optimised.volume.knots().cloud(static_cast<int>(v))[0], after.points[v]);
+  }
+  EXPECT_LE(moved_inside + moved_on_faces + moved_on_edges, r.primary_knots_moved);  // the report counts each sweep
+  EXPECT_GT(moved_inside, 0u);
+  EXPECT_GT(moved_on_faces, 0u);
+  EXPECT_EQ(optimised.statistics.errors.fitted_points, data.size());
+  EXPECT_NO_THROW(validate_knot_clouds(after, optimised.volume.knots()));
+  EXPECT_LE(std::sqrt(optimised.statistics.errors.geometric_max), 1e-9);
+  // Every collocation row at the grid (faces, edges and corners of Ω included) sums to 1.
+  DmsSplineEvaluator evaluator(optimised.volume);
+  double worst_sum = 0;
+  for (const Eigen::Vector3d& x : data.points) {
+    double sum = 0;
+    evaluator.for_each_collocation_weight(x, [&](int, double value) { sum += value; });
+    worst_sum = std::max(worst_sum, std::abs(sum - 1));
+  }
+  EXPECT_LE(worst_sum, 1e-12);
+  // The moved knots still span every polynomial of degree <= n: a quadratic is reproduced.
+  const auto quadratic = [](const Eigen::Vector3d& x) { return 1 + x.x() - 2 * x.y() * x.z() + 0.5 * x.x() * x.x() + x.y() * x.z(); };
+  const VolumeData polynomial = sampled_volume_data(knot_test_grid(14), "f", quadratic);
+  DmsSplineVolume reproduced(after, optimised.volume.knots(), optimised.volume.sharing(), {"f"});
+  const VolumeFitErrors errors = fit_control_vectors(reproduced, polynomial, {});
+  EXPECT_LE(errors.attributes[0].max_abs, 1e-10);
 }
 
 TEST(KnotOptimisation, TheRingCheckRefusesAnInvertedKnotTetrahedron) {

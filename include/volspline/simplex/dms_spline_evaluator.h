@@ -57,8 +57,16 @@ class DmsSplineEvaluator {
   /// function nonzero at x).
   void support_candidates(const Eigen::Vector3d& x, std::vector<int>& out) const;
   /// Calls f(row, value) for every basis function N_β^I with x in its support (value may be 0)
-  /// and x inside Ω: the row of the control vector it multiplies. Σ value = 1 on Ω.
+  /// and x inside Ω: the row of the control vector it multiplies. Σ value = 1 on Ω, but on ∂Ω only
+  /// where the half-open rule's perturbation stays in Ω or the knots outside make up for the
+  /// tetrahedra missing there (for_each_collocation_weight does not depend on that).
   void for_each_basis_function(const Eigen::Vector3d& x, const std::function<void(int row, double value)>& f);
+  /// Calls f(row, value) for x inside Ω so that Σ value · control(row) is evaluate(x)'s value
+  /// exactly as evaluate computes it (a row may come several times: the values add; values may be
+  /// negative): the row of eq. 10's collocation matrix. Shared control vectors: the terms of the
+  /// DMS step from degree n − 1; per-tetrahedron ones: the basis functions. On ∂Ω where the
+  /// half-open rule would look outside Ω, the limit from inside (evaluate). Σ value = 1 on Ω.
+  void for_each_collocation_weight(const Eigen::Vector3d& x, const std::function<void(int row, double value)>& f);
 
  private:
   struct Index;
@@ -68,6 +76,13 @@ class DmsSplineEvaluator {
   bool leaves_domain(const Eigen::Vector3d& x, int located) const;
   /// The same for degree 1, on the tetrahedron degree_zero_tetrahedron(x, located).
   void add_linear_step(const Eigen::Vector3d& x, int located, int order, bool with_value, DmsSplinePoint& out) const;
+  /// d for the value at x ∈ ∂Ω as the limit from inside Ω, 2 s(x + d) − s(x + 2d): this fraction
+  /// of the way from x to the centroid of the tetrahedron `located` that holds it.
+  Eigen::Vector3d boundary_limit_step(const Eigen::Vector3d& x, int located) const;
+  static constexpr double kBoundaryLimitStep = 1e-7;
+  /// The barycentric coordinates of x in tetrahedron t (and the inverse of its edge matrix, whose
+  /// rows are ∇λ_1..3).
+  std::array<double, 4> linear_step_weights(const Eigen::Vector3d& x, int t, Eigen::Matrix3d* inverse) const;
   /// The tetrahedron of a degree-0 spline at x, which lies in the closed tetrahedron `located`.
   int degree_zero_tetrahedron(const Eigen::Vector3d& x, int located) const;
   /// Adds the value (with_value) and the gradient (order 1) at x of the tetrahedra

@@ -1,11 +1,14 @@
 #pragma once
 // Local knot optimisation of a volume-data fit (Hua–He–Qin §5.1 step 3, §5.3): for every domain
-// vertex whose 1-ring error is above a threshold, the sub-knots t_1..t_n of its cloud are the free
-// variables of eq. 10 restricted to the data in its 1-ring, with all other knots and the control
-// vectors fixed; Levenberg–Marquardt (finite-difference Jacobian, Eigen) moves them. Then all
-// control vectors are fitted again. Decisions (docs/fitting.md, "Knot optimisation"):
-// * Primary knots (the domain's vertices) do not move, so feature vertices stay on their feature
-//   lines trivially, and the domain stays valid; only sub-knots move.
+// vertex whose 1-ring error is above a threshold, its knot cloud t_0..t_n is the free variable of
+// eq. 10 restricted to the data in its 1-ring, with all other knots and the control vectors fixed;
+// Levenberg–Marquardt (finite-difference Jacobian, Eigen) moves it. Then all control vectors are
+// fitted again. Decisions (docs/fitting.md, "Knot optimisation"):
+// * The primary knot t_0 (the domain's vertex) moves only where Ω stays the same: anywhere inside
+//   Ω (its tetrahedra keep their orientation and a quarter of their volume), within the plane of a
+//   flat boundary, along a straight feature line where the boundary is two planes (§5.3: "primary
+//   knots on feature lines move only along them"); corners and vertices of a curved boundary stay.
+//   So the data fitted stay the same points, and the domain stays a valid mesh.
 // * Every step keeps the clouds valid: each knot tetrahedron [p_i, q_j, r_k, s_l] of the 1-ring
 //   stays positively oriented and the tetrahedron's centroid strictly inside all of them (a
 //   certificate of eq. 3), exact predicates; sub-knots of boundary vertices stay outside Ω; knots
@@ -13,8 +16,8 @@
 //   The volume built after a sweep is checked in full again (validate_knot_clouds).
 // * The objective sees the attributes only: the identity geometry lies in the spline space for
 //   every valid knot set, so the refit restores it exactly.
-// * A sweep whose refit raises the total error, or no longer reproduces the identity geometry
-//   (to 1e-9 of the data's size), is undone.
+// * A sweep whose refit raises the total error, no longer reproduces the identity geometry
+//   (to 1e-9 of the data's size), or fits fewer data points, is undone.
 #include "volspline/io/volume_data.h"
 #include "volspline/simplex/dms_spline_volume.h"
 #include "volspline/simplex/volume_fitting.h"

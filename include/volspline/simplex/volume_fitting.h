@@ -151,6 +151,13 @@ struct KnotOptimisationOptions {
   /// Knots keep at least this distance from each other and the vertex, and sub-knots stay within
   /// max_radius of the vertex, as fractions of the vertex's shortest edge.
   double min_distance = 0.04, max_radius = 0.45;
+  /// The primary knot (the vertex) moves with its sub-knots where that leaves Ω unchanged: freely
+  /// inside, within the plane of a flat boundary, along a straight feature line (two planes);
+  /// corners and vertices of a curved boundary stay (docs/fitting.md, "The local step"). It stays
+  /// within primary_radius of where the sweep found it (a fraction of its shortest edge), and
+  /// each of its tetrahedra keeps at least min_volume_fraction of its volume.
+  bool move_primary_knots = true;
+  double primary_radius = 0.25, min_volume_fraction = 0.25;
   /// Before the local step: rounds of primary-knot placement from the error (knot_placement.h:
   /// the domain made again with as many primary knots, spaced by error equidistribution, within
   /// spacing_ratio of the median spacing); a round is kept only if its fit is better.
@@ -179,6 +186,9 @@ struct KnotOptimisationReport {
   int sweeps = 0;
   /// Vertices above the threshold (each sweep), and those whose knots moved.
   std::size_t vertices_tried = 0, vertices_moved = 0;
+  /// Of those moved, the vertices whose primary knot moved too (summed over the sweeps, as
+  /// vertices_moved).
+  std::size_t primary_knots_moved = 0;
   /// The mean normalised field mean square error before and after (after ≤ before: a sweep
   /// whose refit raised it is undone).
   double before = 0, after = 0;
