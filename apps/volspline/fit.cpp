@@ -49,6 +49,7 @@ struct FitRequest {
   int placement_rounds = KnotOptimisationOptions{}.placement_rounds;
   double spacing_ratio = KnotOptimisationOptions{}.spacing_ratio;
   bool fixed_primary_knots = false;
+  int knot_sweeps = KnotOptimisationOptions{}.sweeps;
 };
 
 // The N and tilt of two-material:N[:TILT] (tilt 0 when absent); N 0 for a malformed name.
@@ -256,6 +257,9 @@ void fit_file(const FitRequest& r) {
     throw InvalidInput("expected a spacing ratio from 1 to 100, got " + format_double(r.spacing_ratio), "--spacing-ratio");
   options.knots.spacing_ratio = r.spacing_ratio;
   options.knots.move_primary_knots = !r.fixed_primary_knots;
+  if (r.knot_sweeps < 1 || r.knot_sweeps > 50)
+    throw InvalidInput("expected 1 to 50 knot optimisation sweeps, got " + std::to_string(r.knot_sweeps), "--knot-sweeps");
+  options.knots.sweeps = r.knot_sweeps;
   if (!(r.fairing >= 0) || !std::isfinite(r.fairing)) throw InvalidInput("expected a fairing weight >= 0, got " + format_double(r.fairing), "--fairing");
   options.fit.fairing = r.fairing;
   // An explicit --fairing, 0 too, is kept on grid data.
@@ -393,6 +397,9 @@ void add_fit_command(CLI::App& app) {
                   "error is kept if better than the first fit (default 3; 0: sub-knots only)");
   cmd->add_option("--spacing-ratio", r->spacing_ratio,
                   "with --knots place or optimise: the placed knots' spacing stays within this factor of its median (default 2.5)");
+  cmd->add_option("--knot-sweeps", r->knot_sweeps,
+                  "with --knots optimise: passes of the local step over the vertices above the error threshold, each followed "
+                  "by a refit (default 2; more keep lowering the error, about 0.8 s each on fire_ug)");
   cmd->add_flag("--fixed-primary-knots", r->fixed_primary_knots,
                "with --knots optimise: the local step moves the sub-knots only (by default a primary knot moves with its "
                "sub-knots where that leaves the domain unchanged: inside, within a flat boundary, along a straight edge)");

@@ -107,6 +107,7 @@ TEST_F(FitCli, BadInputExitsWithTwoNamingTheProblem) {
   expect_bad("fit " + path("data.csv") + " --knots moving", "--knots");
   expect_bad("fit " + path("data.csv") + " --knots place --placement-rounds 11", "--placement-rounds");
   expect_bad("fit " + path("data.csv") + " --knots place --spacing-ratio 0.5", "--spacing-ratio");
+  expect_bad("fit " + path("data.csv") + " --knots optimise --knot-sweeps 0", "--knot-sweeps");
   expect_bad("fit " + path("data.csv") + " --error -1", "--error");
   expect_bad("fit " + path("data.csv") + " --max-tetrahedra -5", "--max-tetrahedra");
   expect_bad("fit " + path("data.csv") + " --fairing -0.1", "--fairing");
@@ -153,6 +154,7 @@ TEST_F(FitCli, RefinementAndKnotOptimisationAreReportedInTheStatistics) {
     }
   EXPECT_LE(s["knot_optimisation"]["field_normalised_mean_square_after"].get<double>(),
             s["knot_optimisation"]["field_normalised_mean_square_before"].get<double>());
+  EXPECT_LE(s["knot_optimisation"]["primary_knots_moved"].get<int>(), s["knot_optimisation"]["vertices_moved"].get<int>());
   // The placement ran its rounds (3 by default) and never made the held-out error worse.
   ASSERT_TRUE(s.contains("knot_placement"));
   EXPECT_GE(s["knot_placement"]["rounds"].get<int>(), 1);
@@ -162,6 +164,28 @@ TEST_F(FitCli, RefinementAndKnotOptimisationAreReportedInTheStatistics) {
   // A budget that stops the refinement is said on stderr.
   if (s["adaptive_refinement"]["state"].get<std::string>().rfind("converged", 0) != 0) {
     EXPECT_NE(r.err.find("adaptive refinement"), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(FitCli, KnotSweepsAndFixedPrimaryKnotsReachTheLocalStep) {
+  // `other` = xy is quadratic: degree 1 leaves errors for the local step to lower. A degree-1 DMS
+  // spline is the piecewise linear interpolant at the primary knots whatever the sub-knots, so
+  // only moving primary knots can lower it.
+  for (const bool fixed : {false, true}) {
+    const auto r = run("fit " + path("data.csv") + " --degree 1 --attributes other --primary-knots 40 --knots optimise --placement-rounds 0 "
+                       "--knot-sweeps 3" + std::string(fixed ? " --fixed-primary-knots" : "") + " --stats " + path("s.json") + " -o " + path("m.json"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json k = nlohmann::json::parse(std::ifstream(path("s.json")))["knot_optimisation"];
+    EXPECT_LE(k["sweeps"].get<int>(), 3);
+    EXPECT_GT(k["vertices_moved"].get<int>(), 0);
+    const double before = k["field_normalised_mean_square_before"].get<double>(), after = k["field_normalised_mean_square_after"].get<double>();
+    if (fixed) {
+      EXPECT_EQ(k["primary_knots_moved"].get<int>(), 0);
+      EXPECT_NEAR(after, before, 1e-12 * before);
+    } else {
+      EXPECT_GT(k["primary_knots_moved"].get<int>(), 0);
+      EXPECT_LT(after, 0.95 * before);
+    }
   }
 }
 
