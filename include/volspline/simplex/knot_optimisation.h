@@ -11,7 +11,9 @@
 //   So the data fitted stay the same points, and the domain stays a valid mesh.
 // * Every step keeps the clouds valid: each knot tetrahedron [p_i, q_j, r_k, s_l] of the 1-ring
 //   stays positively oriented and the tetrahedron's centroid strictly inside all of them (a
-//   certificate of eq. 3), exact predicates; sub-knots of boundary vertices stay outside Ω; knots
+//   certificate of eq. 3), exact predicates; sub-knots of boundary vertices stay outside Ω and
+//   beyond the plane of every boundary face at their vertex (else the basis need not sum to 1
+//   next to that face: docs/fitting.md, "The local step"); knots
 //   keep a minimal distance. A step that breaks one is refused like one that raises the error.
 //   The volume built after a sweep is checked in full again (validate_knot_clouds).
 // * The objective sees the attributes only: the identity geometry lies in the spline space for
