@@ -215,6 +215,15 @@ py::dict fit_statistics(const VolumeFitStatistics& s) {
   placement["held_out_normalised_mean_square_after"] = s.knot_placement.held_out_after;
   placement["fairing"] = s.knot_placement.fairing;
   out["knot_placement"] = placement;
+  py::dict optimisation;
+  optimisation["sweeps"] = s.knot_optimisation.sweeps;
+  optimisation["vertices_above_threshold"] = s.knot_optimisation.vertices_tried;
+  optimisation["vertices_moved"] = s.knot_optimisation.vertices_moved;
+  optimisation["primary_knots_moved"] = s.knot_optimisation.primary_knots_moved;
+  optimisation["sweeps_undone"] = s.knot_optimisation.undone_sweeps;
+  optimisation["normalised_mean_square_before"] = s.knot_optimisation.before;
+  optimisation["normalised_mean_square_after"] = s.knot_optimisation.after;
+  out["knot_optimisation"] = optimisation;
   return out;
 }
 
@@ -340,18 +349,21 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
   m.def(
       "fit",
       [](const py::object& data, int degree, const std::vector<std::string>& attributes, int primary_knots, const std::string& knots,
-         double error, long long max_tetrahedra, double fairing, const py::object& progress) {
+         double error, long long max_tetrahedra, double fairing, int knot_sweeps, bool fixed_primary_knots, const py::object& progress) {
         VolumeData samples = select_attributes(volume_data_from(data), attributes);
         if (samples.attribute_names.empty()) throw InvalidInput("data: no attributes to fit (only x, y, z)");
         if (knots != "fixed" && knots != "place" && knots != "optimise")
           throw InvalidInput("knots: expected fixed, place or optimise, got '" + knots + "'");
         if (primary_knots < 0 || !(error >= 0) || max_tetrahedra < 0 || !(fairing >= 0) || !std::isfinite(fairing))
           throw InvalidInput("primary_knots, error, max_tetrahedra and fairing: expected finite numbers >= 0");
+        if (knot_sweeps < 1 || knot_sweeps > 50) throw InvalidInput("knot_sweeps: expected 1 to 50, got " + std::to_string(knot_sweeps));
         VolumeFitOptions options;
         options.degree = degree;
         options.domain.primary_knots = primary_knots;
         options.knots.enabled = knots != "fixed";
         options.knots.local = knots == "optimise";
+        options.knots.sweeps = knot_sweeps;
+        options.knots.move_primary_knots = !fixed_primary_knots;
         options.refinement.error = error;
         options.refinement.max_tetrahedra = static_cast<std::size_t>(max_tetrahedra);
         options.fit.fairing = fairing;
@@ -371,12 +383,15 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
       },
       py::arg("data"), py::arg("degree") = 2, py::kw_only(), py::arg("attributes") = std::vector<std::string>{},
       py::arg("primary_knots") = 0, py::arg("knots") = "fixed", py::arg("error") = 0.0, py::arg("max_tetrahedra") = 0,
-      py::arg("fairing") = ControlVectorFitOptions{}.fairing, py::arg("progress") = py::none(),
+      py::arg("fairing") = ControlVectorFitOptions{}.fairing, py::arg("knot_sweeps") = KnotOptimisationOptions{}.sweeps,
+      py::arg("fixed_primary_knots") = false, py::arg("progress") = py::none(),
       R"(Fits scattered volume data with a DMS simplex spline (Hua-He-Qin §5), as `volspline fit`. data: a
 file (.csv with a header, .ply, .vtu, .vti, .vtk, .nii, .inr), 'marschner-lobb:N' or 'two-material:N',
 or a dict {'points': (N, 3), 'attributes': {name: (N,)}}. attributes: the columns to fit (default
 all). knots: 'fixed', 'place' (primary knots placed by error equidistribution, judged on held-out
-data) or 'optimise' (place, then the sub-knots of §5.3); error > 0 refines adaptively (§5.4) within
+data) or 'optimise' (place, then §5.3's local step on the knot clouds: knot_sweeps passes; primary
+knots move with their sub-knots where the domain stays the same unless fixed_primary_knots); error >
+0 refines adaptively (§5.4) within
 max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
 (docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
 per attribute, raw and normalised to the data range.)");

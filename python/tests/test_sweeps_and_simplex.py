@@ -156,6 +156,24 @@ def test_fit_of_grid_data_uses_the_lattice_layout_with_fairing():
     assert stats["attributes"]["f"]["max_abs"] < 1e-6
 
 
+def test_fit_local_knot_step_moves_primary_knots_unless_told_not_to():
+    # A degree-1 DMS spline interpolates at the primary knots whatever the sub-knots: only moving
+    # primary knots lowers its error (docs/fitting.md, "The local step").
+    axis = np.linspace(0, 1, 8)
+    x, y, z = np.meshgrid(axis, axis, axis, indexing="ij")
+    p = np.column_stack([x.ravel(), y.ravel(), z.ravel()])
+    data = {"points": p, "attributes": {"f": p[:, 0] * p[:, 1]}}
+    runs = {}
+    for fixed in (False, True):
+        _, stats = volspline.fit(data, 1, primary_knots=40, knots="optimise", knot_sweeps=3, fixed_primary_knots=fixed)
+        runs[fixed] = stats["knot_optimisation"]
+        assert runs[fixed]["sweeps"] <= 3
+    assert runs[False]["primary_knots_moved"] > 0 and runs[True]["primary_knots_moved"] == 0
+    assert runs[False]["normalised_mean_square_after"] < 0.95 * runs[False]["normalised_mean_square_before"]
+    with pytest.raises(volspline.InvalidInput, match="knot_sweeps"):
+        volspline.fit(data, 1, knots="optimise", knot_sweeps=0)
+
+
 def test_progress_reports_phases_and_raises_what_the_callback_raises():
     reports = []
     volspline.boundary(volspline.half_cylinder_sweep(), progress=lambda phase, fraction: reports.append((phase, fraction)))
