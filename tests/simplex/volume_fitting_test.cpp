@@ -149,6 +149,30 @@ TEST(VolumeFitting, TheLatticeHasAboutAsManyKnotsAsAsked) {
   EXPECT_FALSE(is_complete_grid(cube));
 }
 
+// Grid data put samples on Ω's faces, edges and corners, where the half-open rule looks outside
+// Ω on the faces x, y, z = max: the rows there are the limit from inside (docs/fitting.md, "The
+// local step", cause 3), so polynomials are reproduced at every sample, corners included.
+TEST(VolumeFitting, GridSamplesOfPolynomialsAreReproducedOnTheBoundaryToo) {
+  std::vector<Eigen::Vector3d> grid;
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j)
+      for (int k = 0; k < 9; ++k) grid.emplace_back(i / 8.0, j / 8.0, k / 8.0);
+  for (int n = 1; n <= 3; ++n) {
+    const VolumeData data = sampled_volume_data(grid, "f", [&](const Eigen::Vector3d& x) { return polynomial(x, n); });
+    for (const bool lattice : {true, false}) {
+      VolumeFitOptions options;
+      options.degree = n;
+      options.domain.primary_knots = n == 3 ? 20 : 40;
+      options.grid_layout = lattice;  // false: farthest-point knots, no fairing
+      const VolumeFit fit = fit_volume_data(data, options);
+      const VolumeFitErrors& e = fit.statistics.errors;
+      EXPECT_EQ(e.fitted_points, grid.size()) << "degree " << n;
+      EXPECT_LE(e.attributes[0].max_abs, 1e-10) << "degree " << n << (lattice ? ", lattice" : ", farthest points");
+      EXPECT_LE(std::sqrt(e.geometric_max), 1e-10) << "degree " << n;
+    }
+  }
+}
+
 TEST(VolumeFitting, TheIterativeSolverReproducesPolynomialsToo) {
   // Conjugate gradients (used above 8,000 control vectors) forced on a small problem.
   VolumeData data = sampled_volume_data(random_points(3000, 12), "f", [](const Eigen::Vector3d& x) { return polynomial(x, 2); });
