@@ -347,21 +347,13 @@ void DmsSplineEvaluator::for_each_collocation_weight(const Eigen::Vector3d& x, c
       for (int b = 0; b < v.basis_per_tetrahedron(); ++b) f(v.control_row(t, b), weight * scratch_->values.values[static_cast<std::size_t>(b)]);
     }
   };
-  if (!clearly_inside && leaves_domain(x, located) && x + boundary_limit_step(x, located) != x) {
-    const Eigen::Vector3d step = boundary_limit_step(x, located);
-    terms(x + step, 2);
-    terms(x + 2 * step, -1);
+  std::array<std::pair<Eigen::Vector3d, double>, 2> stencil;
+  const int points = clearly_inside ? 1 : stencil_of(x, located, stencil);
+  if (points == 1) {
+    terms(x, 1);
     return;
   }
-  terms(x, 1);
-}
-
-Eigen::Vector3d DmsSplineEvaluator::boundary_limit_step(const Eigen::Vector3d& x, int located) const {
-  const TetrahedralMesh& domain = volume_->domain();
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (int c = 0; c < 4; ++c)
-    centroid += domain.points[static_cast<std::size_t>(domain.tetrahedra[static_cast<std::size_t>(located)][static_cast<std::size_t>(c)])] / 4;
-  return kBoundaryLimitStep * (centroid - x);
+  for (const auto& [at, weight] : stencil) terms(at, weight);
 }
 
 std::array<double, 4> DmsSplineEvaluator::linear_step_weights(const Eigen::Vector3d& x, int t, Eigen::Matrix3d* inverse_out) const {
@@ -426,26 +418,33 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
   // Values are continuous (n >= 1), but the half-open rule takes them, and derivatives where they
   // jump across knot planes, from the side of the perturbation x + ε(1, ε, ε²). On ∂Ω that side
   // may lie outside Ω, where the basis need not sum to 1 (the tetrahedra outside Ω that would
-  // complete it are missing): there the value is the limit from inside, 2 s(x + d) − s(x + 2d)
-  // along d toward the tetrahedron's centroid (exact for a polynomial piece up to O(|d|²)), and
-  // the derivatives are those at x + d. Degree 1 needs neither (its step lands on the closed
+  // complete it are missing): there the value is the limit from inside (value_stencil), and the
+  // derivatives are those at x + d. Degree 1 needs neither (its step lands on the closed
   // tetrahedron that holds x).
-  const bool linear_step = index_->lower_degree_step && v.degree() == 1;
-  if (!linear_step && !clearly_inside && leaves_domain(x, out.tetrahedron) && x + boundary_limit_step(x, out.tetrahedron) != x) {
-    const int located = out.tetrahedron;
-    const Eigen::Vector3d step = boundary_limit_step(x, located);
-    DmsSplinePoint far;
-    evaluate(x + 2 * step, 0, far);
-    evaluate(x + step, order, out);
-    out.value = 2 * out.value - far.value;
-    out.tetrahedron = located;
-    out.inside = true;
-    return;
-  }
-  if (linear_step) {
+  if (index_->lower_degree_step && v.degree() == 1) {
     add_linear_step(x, out.tetrahedron, order, true, out);
     return;
   }
+  std::array<std::pair<Eigen::Vector3d, double>, 2> stencil;
+  if (!clearly_inside && stencil_of(x, out.tetrahedron, stencil) == 2) {
+    DmsSplinePoint far;
+    far.value.setZero(dim);
+    reaching_tetrahedra(stencil[1].first, scratch_->candidates);
+    index_->keep_part(scratch_->candidates, part);
+    add_values(stencil[1].first, 0, far);
+    reaching_tetrahedra(stencil[0].first, scratch_->candidates);
+    index_->keep_part(scratch_->candidates, part);
+    add_values(stencil[0].first, order, out);
+    out.value = stencil[0].second * out.value + stencil[1].second * far.value;
+    return;
+  }
+  add_values(x, order, out);
+}
+
+void DmsSplineEvaluator::add_values(const Eigen::Vector3d& x, int order, DmsSplinePoint& out) {
+  const DmsSplineVolume& v = *volume_;
+  const int dim = v.dimension();
+  const Eigen::MatrixXd& control = v.control_vectors();
   if (index_->lower_degree_step) {
     add_lower_degree_step(x, order, true, out);
     return;
@@ -475,6 +474,34 @@ void DmsSplineEvaluator::evaluate(const Eigen::Vector3d& x, int order, DmsSpline
       }
     }
   }
+}
+
+int DmsSplineEvaluator::stencil_of(const Eigen::Vector3d& x, int located, std::array<std::pair<Eigen::Vector3d, double>, 2>& out) const {
+  out[0] = {x, 1.0};
+  const DmsSplineVolume& v = *volume_;
+  if (v.degree() == 0 || (index_->lower_degree_step && v.degree() == 1) || !leaves_domain(x, located)) return 1;
+  const TetrahedralMesh& domain = v.domain();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 4; ++c)
+    centroid += domain.points[static_cast<std::size_t>(domain.tetrahedra[static_cast<std::size_t>(located)][static_cast<std::size_t>(c)])] / 4;
+  const Eigen::Vector3d step = kBoundaryLimitStep * (centroid - x);
+  // Both points strictly inside the closed tetrahedron that holds x (toward its centroid); where
+  // the step vanishes in rounding (coordinates far larger than the tetrahedron) x stays.
+  if (x + step == x || x + 2 * step == x + step) return 1;
+  out[0] = {x + step, 2.0};
+  out[1] = {x + 2 * step, -1.0};
+  return 2;
+}
+
+int DmsSplineEvaluator::value_stencil(const Eigen::Vector3d& x, std::array<std::pair<Eigen::Vector3d, double>, 2>& out) const {
+  bool clearly_inside = false;
+  const int located = locate(x, &clearly_inside);
+  if (located < 0) return 0;
+  if (clearly_inside) {
+    out[0] = {x, 1.0};
+    return 1;
+  }
+  return stencil_of(x, located, out);
 }
 
 void DmsSplineEvaluator::add_linear_step(const Eigen::Vector3d& x, int located, int order, bool with_value, DmsSplinePoint& out) const {

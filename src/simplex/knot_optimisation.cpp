@@ -128,6 +128,19 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
   std::vector<std::vector<int>> rings(domain.points.size());
   for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t)
     for (int v : domain.tetrahedra[t]) rings[static_cast<std::size_t>(v)].push_back(static_cast<int>(t));
+  // The primary knots' limits hold from where the optimisation found them, over all sweeps.
+  const std::vector<Eigen::Vector3d> initial_points = domain.points;
+  std::vector<double> volume_before(domain.tetrahedra.size()), initial_shortest(domain.points.size(), INFINITY);
+  for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t) {
+    volume_before[t] = knot_move_volume(domain, domain.tetrahedra[t]);
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        const auto u = static_cast<std::size_t>(domain.tetrahedra[t][static_cast<std::size_t>(a)]);
+        const auto w = static_cast<std::size_t>(domain.tetrahedra[t][static_cast<std::size_t>(b)]);
+        initial_shortest[u] = std::min(initial_shortest[u], (domain.points[u] - domain.points[w]).norm());
+        initial_shortest[w] = std::min(initial_shortest[w], (domain.points[u] - domain.points[w]).norm());
+      }
+  }
   DmsTetrahedronBasis basis(n);
   DmsBasisValues values;
   for (int sweep = 0; sweep < options.sweeps; ++sweep) {
@@ -179,13 +192,30 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
     }
     std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> directions;
     if (options.move_primary_knots) directions = primary_knot_directions(domain);
-    std::vector<double> volume_before(domain.tetrahedra.size());
-    for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t) volume_before[t] = knot_move_volume(domain, domain.tetrahedra[t]);
     KnotClouds clouds = volume.knots();
     TetrahedralMesh moved_domain = domain;  // the primary knots as moved so far this sweep
     DmsSplineEvaluator evaluator(volume);
     const Eigen::MatrixXd& control = volume.control_vectors();
     std::size_t moved = 0;
+    // Tetrahedron t's part of the spline at x (its value_stencil given), normalised, added to out.
+    // A vertex's objective takes the rest of the spline from this sweep's evaluator, so it does
+    // not see the moves of neighbours earlier in the sweep (a Jacobi-like start, Gauss-Seidel
+    // knots); tracking them exactly was tried: no lower error, 30x slower (docs/fitting.md).
+    const auto add_tetrahedron_part = [&](int t, const KnotClouds& c, const std::array<std::pair<Eigen::Vector3d, double>, 2>& stencil,
+                                          int stencil_points, double sign, double* out) {
+      const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
+      const std::array<const Eigen::Vector3d*, 4> pointers{c.cloud(tet[0]), c.cloud(tet[1]), c.cloud(tet[2]), c.cloud(tet[3])};
+      for (int at = 0; at < stencil_points; ++at) {
+        const auto& [x, weight] = stencil[static_cast<std::size_t>(at)];
+        basis.evaluate(x, pointers, 0, values);
+        for (int b = 0; b < volume.basis_per_tetrahedron(); ++b) {
+          const double value = sign * weight * values.values[static_cast<std::size_t>(b)];
+          if (value == 0) continue;
+          const int row = volume.control_row(t, b);
+          for (std::size_t a = 0; a < k; ++a) out[a] += value * control(row, columns[a]) / range[a];
+        }
+      }
+    };
     for (const int v : chosen) {
       const auto uv = static_cast<std::size_t>(v);
       const std::vector<int>& ring = rings[uv];
@@ -200,22 +230,16 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
         points = std::move(strided);
       }
       const Eigen::Index m = static_cast<Eigen::Index>(points.size() * k);
+      // Where evaluate() takes a point's value as the limit from inside Ω (value_stencil), the
+      // objective does too, so that the ring's part and the rest measure the same value.
+      std::vector<std::array<std::pair<Eigen::Vector3d, double>, 2>> stencils(points.size());
+      std::vector<int> stencil_size(points.size());
+      for (std::size_t j = 0; j < points.size(); ++j) stencil_size[j] = evaluator.value_stencil(data.points[points[j]], stencils[j]);
       // The ring tetrahedra's part of the spline at the points for the knots in `c`.
       const auto ring_part = [&](const KnotClouds& c) {
         Eigen::VectorXd out = Eigen::VectorXd::Zero(m);
-        for (int t : ring) {
-          const std::array<int, 4>& tet = domain.tetrahedra[static_cast<std::size_t>(t)];
-          const std::array<const Eigen::Vector3d*, 4> pointers{c.cloud(tet[0]), c.cloud(tet[1]), c.cloud(tet[2]), c.cloud(tet[3])};
-          for (std::size_t j = 0; j < points.size(); ++j) {
-            basis.evaluate(data.points[points[j]], pointers, 0, values);
-            for (int b = 0; b < volume.basis_per_tetrahedron(); ++b) {
-              const double value = values.values[static_cast<std::size_t>(b)];
-              if (value == 0) continue;
-              const int row = volume.control_row(t, b);
-              for (std::size_t a = 0; a < k; ++a) out[static_cast<Eigen::Index>(j * k + a)] += value * control(row, columns[a]) / range[a];
-            }
-          }
-        }
+        for (int t : ring)
+          for (std::size_t j = 0; j < points.size(); ++j) add_tetrahedron_part(t, c, stencils[j], stencil_size[j], 1, out.data() + j * k);
         return out;
       };
       // The rest of the spline minus the data, which the knots of v do not change.
@@ -252,7 +276,8 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
       };
       const auto feasible = [&](const Eigen::VectorXd& theta, KnotClouds& c) {
         const Eigen::Vector3d centre = primary_of(theta);
-        if (free_primary && ((centre - origin).norm() > options.primary_radius * e || !far_from_others(centre))) return false;
+        if (free_primary && ((centre - initial_points[uv]).norm() > options.primary_radius * initial_shortest[uv] || !far_from_others(centre)))
+          return false;
         for (int l = 1; l <= n; ++l) {
           const Eigen::Vector3d t = theta.segment<3>(3 * (l - 1));
           const double r = (t - centre).norm();

@@ -177,13 +177,13 @@ TEST_F(FitCli, KnotSweepsAndFixedPrimaryKnotsReachTheLocalStep) {
     ASSERT_EQ(r.code, 0) << r.err;
     const nlohmann::json k = nlohmann::json::parse(std::ifstream(path("s.json")))["knot_optimisation"];
     EXPECT_LE(k["sweeps"].get<int>(), 3);
-    EXPECT_GT(k["vertices_moved"].get<int>(), 0);
     const double before = k["field_normalised_mean_square_before"].get<double>(), after = k["field_normalised_mean_square_after"].get<double>();
     if (fixed) {
       EXPECT_EQ(k["primary_knots_moved"].get<int>(), 0);
       EXPECT_NEAR(after, before, 1e-12 * before);
     } else {
       EXPECT_GT(k["primary_knots_moved"].get<int>(), 0);
+      EXPECT_LE(k["primary_knots_moved"].get<int>(), k["vertices_moved"].get<int>());
       EXPECT_LT(after, 0.95 * before);
     }
   }

@@ -1,9 +1,11 @@
 #pragma once
 // Evaluating a DMS spline volume (simplex/dms_spline_volume.h) at scattered points: geometry,
 // attributes and their gradients (Hua–He–Qin eqs. 2, 6, 7), zero outside the domain.
+#include <array>
 #include <functional>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -67,6 +69,14 @@ class DmsSplineEvaluator {
   /// DMS step from degree n − 1; per-tetrahedron ones: the basis functions. On ∂Ω where the
   /// half-open rule would look outside Ω, the limit from inside (evaluate). Σ value = 1 on Ω.
   void for_each_collocation_weight(const Eigen::Vector3d& x, const std::function<void(int row, double value)>& f);
+  /// The points and weights whose basis values evaluate() combines into its value at x: x itself
+  /// (1 point, weight 1), or, for degree >= 2 (any degree with per-tetrahedron control vectors)
+  /// at a point of ∂Ω where the half-open rule's perturbation leaves Ω, the limit from inside,
+  /// 2 s(x + d) − s(x + 2d), d = kBoundaryLimitStep of the way to the centroid of the tetrahedron
+  /// holding x (2 points). 0 outside Ω. The two points lie inside that tetrahedron, so the value
+  /// is exact on a polynomial piece up to O(|d|²) (s is continuous for n >= 1).
+  int value_stencil(const Eigen::Vector3d& x, std::array<std::pair<Eigen::Vector3d, double>, 2>& out) const;
+  static constexpr double kBoundaryLimitStep = 1e-7;
 
  private:
   struct Index;
@@ -76,10 +86,11 @@ class DmsSplineEvaluator {
   bool leaves_domain(const Eigen::Vector3d& x, int located) const;
   /// The same for degree 1, on the tetrahedron degree_zero_tetrahedron(x, located).
   void add_linear_step(const Eigen::Vector3d& x, int located, int order, bool with_value, DmsSplinePoint& out) const;
-  /// d for the value at x ∈ ∂Ω as the limit from inside Ω, 2 s(x + d) − s(x + 2d): this fraction
-  /// of the way from x to the centroid of the tetrahedron `located` that holds it.
-  Eigen::Vector3d boundary_limit_step(const Eigen::Vector3d& x, int located) const;
-  static constexpr double kBoundaryLimitStep = 1e-7;
+  /// value_stencil for x in the closed tetrahedron `located`, not clearly inside it.
+  int stencil_of(const Eigen::Vector3d& x, int located, std::array<std::pair<Eigen::Vector3d, double>, 2>& out) const;
+  /// Adds the value (and the gradient, order 1) at x of the candidate tetrahedra in
+  /// scratch_->candidates (those reaching x, of x's part), degree >= 1.
+  void add_values(const Eigen::Vector3d& x, int order, DmsSplinePoint& out);
   /// The barycentric coordinates of x in tetrahedron t (and the inverse of its edge matrix, whose
   /// rows are ∇λ_1..3).
   std::array<double, 4> linear_step_weights(const Eigen::Vector3d& x, int t, Eigen::Matrix3d* inverse) const;

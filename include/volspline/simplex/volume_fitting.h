@@ -153,9 +153,9 @@ struct KnotOptimisationOptions {
   double min_distance = 0.04, max_radius = 0.45;
   /// The primary knot (the vertex) moves with its sub-knots where that leaves Ω unchanged: freely
   /// inside, within the plane of a flat boundary, along a straight feature line (two planes);
-  /// corners and vertices of a curved boundary stay (docs/fitting.md, "The local step"). It stays
-  /// within primary_radius of where the sweep found it (a fraction of its shortest edge), and
-  /// each of its tetrahedra keeps at least min_volume_fraction of its volume.
+  /// corners and vertices of a curved boundary stay (docs/fitting.md, "The local step"). Over all
+  /// sweeps it stays within primary_radius of where the optimisation found it (a fraction of its
+  /// shortest edge then), and each of its tetrahedra keeps min_volume_fraction of its volume then.
   bool move_primary_knots = true;
   double primary_radius = 0.25, min_volume_fraction = 0.25;
   /// Before the local step: rounds of primary-knot placement from the error (knot_placement.h:
