@@ -528,6 +528,11 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
           placement.fairing = judging.fairing;
           domain_options = std::move(best);
           placement.after = mean_normalised_field_error(built.errors);
+          // And so are the refits that follow (the local step, adaptive refinement): unfaired,
+          // the local step's refit of a placed Marschner–Lobb 41³ layout rang to 0.56 normalised
+          // mean square against the truth (largest error 72) for 2.1e-3 at the data.
+          fit_options.fairing = placement.fairing;
+          statistics.fairing = fit_options.fairing;
         }
       } catch (const InvalidInput&) {
         // Too few held-in points for the first domain's fit, or a kept layout that could not be

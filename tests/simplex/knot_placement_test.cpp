@@ -102,6 +102,8 @@ TEST(KnotPlacement, PlacedKnotsLowerTheErrorAgainstTheTrueField) {
   // are no better than unfaired.
   EXPECT_LT(r.after, 0.3 * r.before);
   EXPECT_EQ(r.fairing, 0.1);
+  // The fit is reported with the placement's fairing, which the steps after it keep.
+  EXPECT_EQ(placed.statistics.fairing, r.fairing);
   const double placed_truth = placement_truth_error(placed.volume), fixed_truth = placement_truth_error(fixed.volume);
   EXPECT_LT(placed_truth, 0.5 * fixed_truth);
   options.knots.enabled = false;
@@ -115,6 +117,13 @@ TEST(KnotPlacement, PlacedKnotsLowerTheErrorAgainstTheTrueField) {
   const VolumeFit again = fit_volume_data(data, options);
   EXPECT_EQ(again.volume.domain().points, placed.volume.domain().points);
   EXPECT_EQ(again.statistics.knot_placement.after, r.after);
+  // The local step after a kept placement refits faired as well: against the blob it stays near
+  // the placed fit (unfaired refits of placed layouts ring between the samples).
+  options.knots.local = true;
+  const VolumeFit optimised = fit_volume_data(data, options);
+  ASSERT_GT(optimised.statistics.knot_placement.kept, 0);
+  EXPECT_EQ(optimised.statistics.fairing, optimised.statistics.knot_placement.fairing);
+  EXPECT_LT(placement_truth_error(optimised.volume), 1.5 * placed_truth);
 }
 
 TEST(KnotPlacement, PolynomialsAreStillReproducedWithPlacedKnots) {
