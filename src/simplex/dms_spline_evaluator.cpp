@@ -295,12 +295,17 @@ void DmsSplineEvaluator::for_each_basis_function(const Eigen::Vector3d& x, const
     f(v.control_row(degree_zero_tetrahedron(x, located), 0), 1.0);
     return;
   }
+  add_basis_functions(x, located, 1, f);
+}
+
+void DmsSplineEvaluator::add_basis_functions(const Eigen::Vector3d& x, int located, double weight, const std::function<void(int, double)>& f) {
+  const DmsSplineVolume& v = *volume_;
   const std::vector<DmsTetrahedronPlan>& full_plans = index_->full_plans(v);
   support_candidates(x, scratch_->candidates);
   index_->keep_part(scratch_->candidates, index_->parts[static_cast<std::size_t>(located)]);
   for (const int t : scratch_->candidates) {
     scratch_->basis.evaluate(x, full_plans[static_cast<std::size_t>(t)], 0, scratch_->values);
-    for (int b = 0; b < v.basis_per_tetrahedron(); ++b) f(v.control_row(t, b), scratch_->values.values[static_cast<std::size_t>(b)]);
+    for (int b = 0; b < v.basis_per_tetrahedron(); ++b) f(v.control_row(t, b), weight * scratch_->values.values[static_cast<std::size_t>(b)]);
   }
 }
 
@@ -339,13 +344,7 @@ void DmsSplineEvaluator::for_each_collocation_weight(const Eigen::Vector3d& x, c
       }
       return;
     }
-    const std::vector<DmsTetrahedronPlan>& full_plans = index_->full_plans(v);
-    support_candidates(at, scratch_->candidates);
-    index_->keep_part(scratch_->candidates, index_->parts[static_cast<std::size_t>(located)]);
-    for (const int t : scratch_->candidates) {
-      scratch_->basis.evaluate(at, full_plans[static_cast<std::size_t>(t)], 0, scratch_->values);
-      for (int b = 0; b < v.basis_per_tetrahedron(); ++b) f(v.control_row(t, b), weight * scratch_->values.values[static_cast<std::size_t>(b)]);
-    }
+    add_basis_functions(at, located, weight, f);
   };
   std::array<std::pair<Eigen::Vector3d, double>, 2> stencil;
   const int points = clearly_inside ? 1 : stencil_of(x, located, stencil);

@@ -26,6 +26,32 @@ double knot_move_volume(const TetrahedralMesh& domain, const std::array<int, 4>&
   return (p[static_cast<std::size_t>(t[1])] - a).cross(p[static_cast<std::size_t>(t[2])] - a).dot(p[static_cast<std::size_t>(t[3])] - a) / 6;
 }
 
+// Each vertex's shortest incident edge.
+std::vector<double> shortest_incident_edges(const TetrahedralMesh& domain) {
+  std::vector<double> shortest(domain.points.size(), INFINITY);
+  for (const auto& tet : domain.tetrahedra)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        const auto u = static_cast<std::size_t>(tet[static_cast<std::size_t>(a)]), w = static_cast<std::size_t>(tet[static_cast<std::size_t>(b)]);
+        const double e = (domain.points[u] - domain.points[w]).norm();
+        shortest[u] = std::min(shortest[u], e);
+        shortest[w] = std::min(shortest[w], e);
+      }
+  return shortest;
+}
+
+// The planes of the boundary faces at each vertex: (unit outward normal, offset).
+std::vector<std::vector<Eigen::Vector4d>> boundary_face_planes(const TetrahedralMesh& domain) {
+  std::vector<std::vector<Eigen::Vector4d>> planes(domain.points.size());
+  for (const BoundaryFace& f : boundary_faces(domain)) {
+    const Eigen::Vector3d& a = domain.points[static_cast<std::size_t>(f.vertices[0])];
+    const Eigen::Vector3d normal =
+        (domain.points[static_cast<std::size_t>(f.vertices[1])] - a).cross(domain.points[static_cast<std::size_t>(f.vertices[2])] - a).normalized();
+    for (int w : f.vertices) planes[static_cast<std::size_t>(w)].emplace_back(normal.x(), normal.y(), normal.z(), normal.dot(a));
+  }
+  return planes;
+}
+
 // Directions in which each primary knot may move without changing Ω (docs/fitting.md, "The local
 // step"): every direction inside Ω; within the plane where all its boundary faces lie; along the
 // line where they lie in two planes (a straight feature line: §5.3's "primary knots on feature
@@ -34,18 +60,15 @@ double knot_move_volume(const TetrahedralMesh& domain, const std::array<int, 4>&
 // stays in these directions and every tetrahedron keeps its orientation. Planes and lines are
 // built from the faces' own normals, so a face on x = c moves its vertices with x unchanged
 // exactly.
-std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> primary_knot_directions(const TetrahedralMesh& domain) {
-  std::vector<std::vector<Eigen::Vector3d>> normals(domain.points.size());
-  for (const BoundaryFace& f : boundary_faces(domain)) {
-    const Eigen::Vector3d& a = domain.points[static_cast<std::size_t>(f.vertices[0])];
-    const Eigen::Vector3d n = (domain.points[static_cast<std::size_t>(f.vertices[1])] - a).cross(domain.points[static_cast<std::size_t>(f.vertices[2])] - a);
-    for (int v : f.vertices) normals[static_cast<std::size_t>(v)].push_back(n);
-  }
+std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> primary_knot_directions(const std::vector<std::vector<Eigen::Vector4d>>& face_planes) {
+  std::vector<std::vector<Eigen::Vector3d>> normals(face_planes.size());
+  for (std::size_t v = 0; v < face_planes.size(); ++v)
+    for (const Eigen::Vector4d& plane : face_planes[v]) normals[v].push_back(plane.head<3>());
   const auto parallel = [](const Eigen::Vector3d& m, const Eigen::Vector3d& n) {
     return m.dot(n) > 0 && m.cross(n).norm() <= 1e-12 * m.norm() * n.norm();
   };
-  std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> out(domain.points.size());
-  for (std::size_t v = 0; v < domain.points.size(); ++v) {
+  std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> out(normals.size());
+  for (std::size_t v = 0; v < normals.size(); ++v) {
     const std::vector<Eigen::Vector3d>& n = normals[v];
     if (n.empty()) {
       out[v] = Eigen::Matrix3d::Identity();
@@ -130,17 +153,9 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
     for (int v : domain.tetrahedra[t]) rings[static_cast<std::size_t>(v)].push_back(static_cast<int>(t));
   // The primary knots' limits hold from where the optimisation found them, over all sweeps.
   const std::vector<Eigen::Vector3d> initial_points = domain.points;
-  std::vector<double> volume_before(domain.tetrahedra.size()), initial_shortest(domain.points.size(), INFINITY);
-  for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t) {
-    volume_before[t] = knot_move_volume(domain, domain.tetrahedra[t]);
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        const auto u = static_cast<std::size_t>(domain.tetrahedra[t][static_cast<std::size_t>(a)]);
-        const auto w = static_cast<std::size_t>(domain.tetrahedra[t][static_cast<std::size_t>(b)]);
-        initial_shortest[u] = std::min(initial_shortest[u], (domain.points[u] - domain.points[w]).norm());
-        initial_shortest[w] = std::min(initial_shortest[w], (domain.points[u] - domain.points[w]).norm());
-      }
-  }
+  const std::vector<double> initial_shortest = shortest_incident_edges(domain);
+  std::vector<double> volume_before(domain.tetrahedra.size());
+  for (std::size_t t = 0; t < domain.tetrahedra.size(); ++t) volume_before[t] = knot_move_volume(domain, domain.tetrahedra[t]);
   DmsTetrahedronBasis basis(n);
   DmsBasisValues values;
   for (int sweep = 0; sweep < options.sweeps; ++sweep) {
@@ -173,25 +188,10 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& volume, VolumeFitErrors& 
     report.vertices_tried += chosen.size();
     if (chosen.empty()) break;
 
-    std::vector<double> shortest(domain.points.size(), INFINITY);
-    for (const auto& tet : domain.tetrahedra)
-      for (int a = 0; a < 4; ++a)
-        for (int b = a + 1; b < 4; ++b) {
-          const auto u = static_cast<std::size_t>(tet[static_cast<std::size_t>(a)]), w = static_cast<std::size_t>(tet[static_cast<std::size_t>(b)]);
-          const double e = (domain.points[u] - domain.points[w]).norm();
-          shortest[u] = std::min(shortest[u], e);
-          shortest[w] = std::min(shortest[w], e);
-        }
-    // The planes of the boundary faces at each vertex, (unit outward normal, offset).
-    std::vector<std::vector<Eigen::Vector4d>> face_planes(domain.points.size());
-    for (const BoundaryFace& f : boundary_faces(domain)) {
-      const Eigen::Vector3d& a = domain.points[static_cast<std::size_t>(f.vertices[0])];
-      const Eigen::Vector3d normal =
-          (domain.points[static_cast<std::size_t>(f.vertices[1])] - a).cross(domain.points[static_cast<std::size_t>(f.vertices[2])] - a).normalized();
-      for (int w : f.vertices) face_planes[static_cast<std::size_t>(w)].emplace_back(normal.x(), normal.y(), normal.z(), normal.dot(a));
-    }
+    const std::vector<double> shortest = shortest_incident_edges(domain);
+    const std::vector<std::vector<Eigen::Vector4d>> face_planes = boundary_face_planes(domain);
     std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> directions;
-    if (options.move_primary_knots) directions = primary_knot_directions(domain);
+    if (options.move_primary_knots) directions = primary_knot_directions(face_planes);
     KnotClouds clouds = volume.knots();
     TetrahedralMesh moved_domain = domain;  // the primary knots as moved so far this sweep
     DmsSplineEvaluator evaluator(volume);

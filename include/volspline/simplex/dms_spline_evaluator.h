@@ -86,6 +86,9 @@ class DmsSplineEvaluator {
   bool leaves_domain(const Eigen::Vector3d& x, int located) const;
   /// The same for degree 1, on the tetrahedron degree_zero_tetrahedron(x, located).
   void add_linear_step(const Eigen::Vector3d& x, int located, int order, bool with_value, DmsSplinePoint& out) const;
+  /// Calls f(row, weight · N_β^I(x)) for the basis functions of the tetrahedra of `located`'s part
+  /// whose supports hold x (for_each_basis_function, and the per-tetrahedron collocation rows).
+  void add_basis_functions(const Eigen::Vector3d& x, int located, double weight, const std::function<void(int, double)>& f);
   /// value_stencil for x in the closed tetrahedron `located`, not clearly inside it.
   int stencil_of(const Eigen::Vector3d& x, int located, std::array<std::pair<Eigen::Vector3d, double>, 2>& out) const;
   /// Adds the value (and the gradient, order 1) at x of the candidate tetrahedra in
