@@ -49,6 +49,7 @@ struct FitRequest {
   int placement_rounds = KnotOptimisationOptions{}.placement_rounds;
   double spacing_ratio = KnotOptimisationOptions{}.spacing_ratio;
   bool fixed_primary_knots = false;
+  bool judge_local_step_at_data = false;
   int knot_sweeps = KnotOptimisationOptions{}.sweeps;
 };
 
@@ -189,7 +190,10 @@ nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& 
                             {"primary_knots_moved", k.primary_knots_moved},
                             {"sweeps_undone", k.undone_sweeps},
                             {"field_normalised_mean_square_before", k.before},
-                            {"field_normalised_mean_square_after", k.after}};
+                            {"field_normalised_mean_square_after", k.after},
+                            {"judged_on_held_out", k.judged_on_held_out},
+                            {"held_out_field_normalised_mean_square_before", k.held_out_before},
+                            {"held_out_field_normalised_mean_square_after", k.held_out_after}};
   const KnotPlacementReport& placement = s.knot_placement;
   j["knot_placement"] = {{"rounds", placement.rounds},
                          {"round_kept", placement.kept},
@@ -257,6 +261,7 @@ void fit_file(const FitRequest& r) {
     throw InvalidInput("expected a spacing ratio from 1 to 100, got " + format_double(r.spacing_ratio), "--spacing-ratio");
   options.knots.spacing_ratio = r.spacing_ratio;
   options.knots.move_primary_knots = !r.fixed_primary_knots;
+  options.knots.held_out = !r.judge_local_step_at_data;
   if (r.knot_sweeps < 1 || r.knot_sweeps > 50)
     throw InvalidInput("expected 1 to 50 knot optimisation sweeps, got " + std::to_string(r.knot_sweeps), "--knot-sweeps");
   options.knots.sweeps = r.knot_sweeps;
@@ -340,7 +345,10 @@ void fit_file(const FitRequest& r) {
     const KnotOptimisationReport& k = statistics.knot_optimisation;
     if (r.knots == "optimise")
       std::cout << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved ("
-              << k.primary_knots_moved << " with their primary knot) in " << k.sweeps << " sweeps, normalised field mean square " << format_double(k.before) << " -> " << format_double(k.after) << "\n";
+              << k.primary_knots_moved << " with their primary knot) in " << k.sweeps << " sweeps, normalised field mean square " << format_double(k.before) << " -> " << format_double(k.after)
+                << (k.judged_on_held_out ? " (at the held-out eighth of the points: " + format_double(k.held_out_before) + " -> " + format_double(k.held_out_after) + ")"
+                                         : std::string(" (judged at the data)"))
+                << "\n";
   }
   const AdaptiveRefinementReport& refinement = statistics.refinement;
   if (r.error > 0) {
@@ -403,6 +411,9 @@ void add_fit_command(CLI::App& app) {
   cmd->add_flag("--fixed-primary-knots", r->fixed_primary_knots,
                "with --knots optimise: the local step moves the sub-knots only (by default a primary knot moves with its "
                "sub-knots where that leaves the domain unchanged: inside, within a flat boundary, along a straight edge)");
+  cmd->add_flag("--judge-local-step-at-data", r->judge_local_step_at_data,
+               "with --knots optimise: keep a sweep of the local step if it lowers the error at the data (by default at the "
+               "held-out eighth of the points, fitted to the others; the knots kept are then fitted to all the data)");
   cmd->add_option("--png", r->png, "also write an X-ray picture of the first fitted attribute (.png)");
   cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
   r->fairing_option = cmd->add_option("--fairing", r->fairing,

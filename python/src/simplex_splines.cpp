@@ -223,6 +223,9 @@ py::dict fit_statistics(const VolumeFitStatistics& s) {
   optimisation["sweeps_undone"] = s.knot_optimisation.undone_sweeps;
   optimisation["normalised_mean_square_before"] = s.knot_optimisation.before;
   optimisation["normalised_mean_square_after"] = s.knot_optimisation.after;
+  optimisation["judged_on_held_out"] = s.knot_optimisation.judged_on_held_out;
+  optimisation["held_out_normalised_mean_square_before"] = s.knot_optimisation.held_out_before;
+  optimisation["held_out_normalised_mean_square_after"] = s.knot_optimisation.held_out_after;
   out["knot_optimisation"] = optimisation;
   return out;
 }
@@ -349,7 +352,8 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
   m.def(
       "fit",
       [](const py::object& data, int degree, const std::vector<std::string>& attributes, int primary_knots, const std::string& knots,
-         double error, long long max_tetrahedra, double fairing, int knot_sweeps, bool fixed_primary_knots, const py::object& progress) {
+         double error, long long max_tetrahedra, double fairing, int knot_sweeps, bool fixed_primary_knots, bool judge_local_step_at_data,
+         const py::object& progress) {
         VolumeData samples = select_attributes(volume_data_from(data), attributes);
         if (samples.attribute_names.empty()) throw InvalidInput("data: no attributes to fit (only x, y, z)");
         if (knots != "fixed" && knots != "place" && knots != "optimise")
@@ -364,6 +368,7 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
         options.knots.local = knots == "optimise";
         options.knots.sweeps = knot_sweeps;
         options.knots.move_primary_knots = !fixed_primary_knots;
+        options.knots.held_out = !judge_local_step_at_data;
         options.refinement.error = error;
         options.refinement.max_tetrahedra = static_cast<std::size_t>(max_tetrahedra);
         options.fit.fairing = fairing;
@@ -384,13 +389,15 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
       py::arg("data"), py::arg("degree") = 2, py::kw_only(), py::arg("attributes") = std::vector<std::string>{},
       py::arg("primary_knots") = 0, py::arg("knots") = "fixed", py::arg("error") = 0.0, py::arg("max_tetrahedra") = 0,
       py::arg("fairing") = ControlVectorFitOptions{}.fairing, py::arg("knot_sweeps") = KnotOptimisationOptions{}.sweeps,
-      py::arg("fixed_primary_knots") = false, py::arg("progress") = py::none(),
+      py::arg("fixed_primary_knots") = false, py::arg("judge_local_step_at_data") = false, py::arg("progress") = py::none(),
       R"(Fits scattered volume data with a DMS simplex spline (Hua-He-Qin §5), as `volspline fit`. data: a
 file (.csv with a header, .ply, .vtu, .vti, .vtk, .nii, .inr), 'marschner-lobb:N' or 'two-material:N',
 or a dict {'points': (N, 3), 'attributes': {name: (N,)}}. attributes: the columns to fit (default
 all). knots: 'fixed', 'place' (primary knots placed by error equidistribution, judged on held-out
 data) or 'optimise' (place, then §5.3's local step on the knot clouds: knot_sweeps passes; primary
-knots move with their sub-knots where the domain stays the same unless fixed_primary_knots); error >
+knots move with their sub-knots where the domain stays the same unless fixed_primary_knots; a sweep is
+kept if it lowers the error at the held-out eighth of the points, or at the data with
+judge_local_step_at_data); error >
 0 refines adaptively (§5.4) within
 max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
 (docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors

@@ -52,6 +52,20 @@ int VolumeData::attribute_column(const std::string& name) const {
   return static_cast<int>(it - attribute_names.begin());
 }
 
+VolumeData every_nth_point(const VolumeData& data, std::size_t every, std::size_t which, bool keep) {
+  VolumeData out;
+  out.attribute_names = data.attribute_names;
+  std::vector<Eigen::Index> rows;
+  for (std::size_t i = 0; i < data.size(); ++i)
+    if ((i % every == which) == keep) rows.push_back(static_cast<Eigen::Index>(i));
+  out.attributes.resize(static_cast<Eigen::Index>(rows.size()), data.attributes.cols());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    out.points.push_back(data.points[static_cast<std::size_t>(rows[r])]);
+    out.attributes.row(static_cast<Eigen::Index>(r)) = data.attributes.row(rows[r]);
+  }
+  return out;
+}
+
 VolumeData select_attributes(const VolumeData& data, const std::vector<std::string>& names) {
   if (names.empty()) return data;
   VolumeData selected;

@@ -291,20 +291,6 @@ VolumeData split_domain_at_jump(PointCloudDomain& domain, const VolumeData& data
   return fitted;
 }
 
-// The data points i with (i % every == which) == keep, in their order.
-VolumeData every_nth_point(const VolumeData& data, std::size_t every, std::size_t which, bool keep) {
-  VolumeData out;
-  out.attribute_names = data.attribute_names;
-  std::vector<Eigen::Index> rows;
-  for (std::size_t i = 0; i < data.size(); ++i)
-    if ((i % every == which) == keep) rows.push_back(static_cast<Eigen::Index>(i));
-  out.attributes.resize(static_cast<Eigen::Index>(rows.size()), data.attributes.cols());
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    out.points.push_back(data.points[static_cast<std::size_t>(rows[r])]);
-    out.attributes.row(static_cast<Eigen::Index>(r)) = data.attributes.row(rows[r]);
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -397,8 +383,6 @@ VolumeFitErrors volume_fit_errors(const DmsSplineVolume& volume, const VolumeDat
   return errors_at(c.a * volume.control_vectors(), data, c.inside, columns);
 }
 
-// Knot placement holds out every kPlacementHoldOut-th data point to judge its rounds.
-constexpr std::size_t kPlacementHoldOut = 8;
 // The fairing weight (at least) of the fits that judge a placement.
 constexpr double kPlacementFairing = 0.1;
 
@@ -482,8 +466,8 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     KnotPlacementReport& placement = statistics.knot_placement;
     placement.before = mean_normalised_field_error(built.errors);
     placement.after = placement.before;
-    const VolumeData training = every_nth_point(data, kPlacementHoldOut, kPlacementHoldOut / 2, false);
-    const VolumeData held_out = every_nth_point(data, kPlacementHoldOut, kPlacementHoldOut / 2, true);
+    const VolumeData training = every_nth_point(data, kKnotHoldOut, kKnotHoldOut / 2, false);
+    const VolumeData held_out = every_nth_point(data, kKnotHoldOut, kKnotHoldOut / 2, true);
     if (held_out.size() > 0 && training.size() > 0) {
       try {
         // The judging fits are faired (at least kPlacementFairing): without, basis functions next to

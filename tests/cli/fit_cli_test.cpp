@@ -171,11 +171,15 @@ TEST_F(FitCli, KnotSweepsAndFixedPrimaryKnotsReachTheLocalStep) {
   // `other` = xy is quadratic: degree 1 leaves errors for the local step to lower. A degree-1 DMS
   // spline is the piecewise linear interpolant at the primary knots whatever the sub-knots, so
   // only moving primary knots can lower it.
+  // Judged at the data: on 8^3 points the held-out eighth (64 points) refuses these moves
+  // (checked below).
   for (const bool fixed : {false, true}) {
     const auto r = run("fit " + path("data.csv") + " --degree 1 --attributes other --primary-knots 40 --knots optimise --placement-rounds 0 "
-                       "--knot-sweeps 3" + std::string(fixed ? " --fixed-primary-knots" : "") + " --stats " + path("s.json") + " -o " + path("m.json"));
+                       "--knot-sweeps 3 --judge-local-step-at-data" + std::string(fixed ? " --fixed-primary-knots" : "") + " --stats " + path("s.json") + " -o " + path("m.json"));
     ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("(judged at the data)"), std::string::npos) << r.out;
     const nlohmann::json k = nlohmann::json::parse(std::ifstream(path("s.json")))["knot_optimisation"];
+    EXPECT_FALSE(k["judged_on_held_out"].get<bool>());
     EXPECT_LE(k["sweeps"].get<int>(), 3);
     const double before = k["field_normalised_mean_square_before"].get<double>(), after = k["field_normalised_mean_square_after"].get<double>();
     if (fixed) {
@@ -186,6 +190,22 @@ TEST_F(FitCli, KnotSweepsAndFixedPrimaryKnotsReachTheLocalStep) {
       EXPECT_LE(k["primary_knots_moved"].get<int>(), k["vertices_moved"].get<int>());
       EXPECT_LT(after, 0.95 * before);
     }
+  }
+  // By default the sweeps are judged on the held-out eighth of the points, and a sweep that
+  // raises the error there is undone (the fit given stays).
+  const auto r = run("fit " + path("data.csv") + " --degree 1 --attributes other --primary-knots 40 --knots optimise --placement-rounds 0 "
+                     "--knot-sweeps 3 --stats " + path("s.json") + " -o " + path("m.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("at the held-out eighth of the points"), std::string::npos) << r.out;
+  const nlohmann::json k = nlohmann::json::parse(std::ifstream(path("s.json")))["knot_optimisation"];
+  EXPECT_TRUE(k["judged_on_held_out"].get<bool>());
+  const double held_before = k["held_out_field_normalised_mean_square_before"].get<double>();
+  const double held_after = k["held_out_field_normalised_mean_square_after"].get<double>();
+  EXPECT_GT(held_before, 0);
+  EXPECT_LE(held_after, held_before);
+  if (k["sweeps_undone"].get<int>() > 0 && k["sweeps"].get<int>() == 1) {
+    EXPECT_EQ(held_after, held_before);
+    EXPECT_EQ(k["field_normalised_mean_square_after"].get<double>(), k["field_normalised_mean_square_before"].get<double>());
   }
 }
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "support/random_points.h"
+#include "support/truth_error.h"
 #include "volspline/construct/volume_data_examples.h"
 #include "volspline/core/error.h"
 #include "volspline/simplex/dms_spline_evaluator.h"
@@ -24,19 +25,7 @@ double placement_test_distance(const Eigen::Vector3d& x) { return (x - kPlacemen
 
 // The mean square error against the blob itself at random points of Ω.
 double placement_truth_error(const DmsSplineVolume& volume) {
-  const std::vector<Eigen::Vector3d> points = random_points_in_box(20000, 99);
-  DmsSplineEvaluator evaluator(volume);
-  const int column = volume.attribute_column("f");
-  double sum = 0;
-  int inside = 0;
-  for (const auto& x : points) {
-    const DmsSplinePoint p = evaluator.evaluate(x);
-    if (!p.inside) continue;
-    const double e = p.value[column] - placement_test_blob(x);
-    sum += e * e;
-    ++inside;
-  }
-  return sum / std::max(inside, 1);
+  return test_support::truth_mean_square(volume, "f", placement_test_blob, random_points_in_box(20000, 99));
 }
 
 TEST(KnotPlacement, TheSpacingIsSmallAtTheBlobAndWithinItsBounds) {

@@ -27,6 +27,11 @@ struct VolumeData {
 /// is empty). \throw InvalidInput for a name the data lacks (naming those it has), or repeated.
 VolumeData select_attributes(const VolumeData& data, const std::vector<std::string>& names);
 
+/// The points i with (i % every == which) == keep, in their order, with their attributes: a
+/// deterministic split into held-in and held-out data (knot placement and the local knot step
+/// judge on every 8th point).
+VolumeData every_nth_point(const VolumeData& data, std::size_t every, std::size_t which, bool keep);
+
 /// Checks that every coordinate and attribute is finite, the sizes agree and attribute names are
 /// distinct, non-empty and not x, y or z. \throw InvalidInput "SOURCE: point i: ..." (or the
 /// attribute's name) saying what was found.

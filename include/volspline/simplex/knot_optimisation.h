@@ -18,8 +18,14 @@
 //   The volume built after a sweep is checked in full again (validate_knot_clouds).
 // * The objective sees the attributes only: the identity geometry lies in the spline space for
 //   every valid knot set, so the refit restores it exactly.
-// * A sweep whose refit raises the total error, no longer reproduces the identity geometry
-//   (to 1e-9 of the data's size), or fits fewer data points, is undone.
+// * Judged on held-out data (KnotOptimisationOptions::held_out): every 8th point is left out of
+//   the objective and the refits; a vertex's move must lower the error at its ring's held-out
+//   points too, and a sweep is undone unless its refit lowers the error at all of them (moves
+//   judged at the data alone fit the samples and raise the error against the truth:
+//   Marschner-Lobb, the tilted jump). The knots kept are fitted to all the data at the end.
+// * A sweep whose refit no longer reproduces the identity geometry (to 1e-9 of the data's
+//   size), or fits fewer data points, is undone; judged at the data, so is one that raises the
+//   error there.
 #include "volspline/io/volume_data.h"
 #include "volspline/simplex/dms_spline_volume.h"
 #include "volspline/simplex/volume_fitting.h"

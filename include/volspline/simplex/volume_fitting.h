@@ -5,6 +5,7 @@
 // positions are their own parameters:  min Σ_i |p_i − s(x_i, y_i, z_i)|².
 // Knot optimisation (§5.3, simplex/knot_optimisation.h) and adaptive refinement (§5.4,
 // simplex/adaptive_refinement.h) follow in fit_volume_data when asked for (docs/fitting.md).
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -137,6 +138,10 @@ struct AdaptiveRefinementReport {
 };
 
 // The options and report of local knot optimisation (simplex/knot_optimisation.h, §5.3).
+/// Knot placement and the local knot step judge their moves on every kKnotHoldOut-th data point
+/// (every_nth_point(data, kKnotHoldOut, kKnotHoldOut / 2, true)), fitted to the others.
+inline constexpr std::size_t kKnotHoldOut = 8;
+
 struct KnotOptimisationOptions {
   bool enabled = false;
   /// Vertices whose 1-ring error (RMS normalised field error of the data in the tetrahedra
@@ -166,6 +171,12 @@ struct KnotOptimisationOptions {
   /// After the placement, the local step of §5.3 (sub-knots by Levenberg–Marquardt, `sweeps`
   /// passes); false: placement only (`--knots place`).
   bool local = true;
+  /// The local step's sweeps are judged on held-out data, as the placement's rounds: every
+  /// kKnotHoldOut-th point is left out of the objective and the refits, a sweep is kept only if
+  /// the error there falls, and the knots kept are fitted to all the data at the end (so the
+  /// error at the data may end above where it began). false, or fewer than 16 held-out points:
+  /// judged at the data (a sweep is kept only if the error there falls).
+  bool held_out = true;
 };
 
 struct KnotPlacementReport {
@@ -189,9 +200,13 @@ struct KnotOptimisationReport {
   /// Of those moved, the vertices whose primary knot moved too (summed over the sweeps, as
   /// vertices_moved).
   std::size_t primary_knots_moved = 0;
-  /// The mean normalised field mean square error before and after (after ≤ before: a sweep
-  /// whose refit raised it is undone).
-  double before = 0, after = 0;
+  /// The mean normalised field mean square error at all the data before and after (after ≤
+  /// before when judged at the data), and, when judged on held-out data, at the held-out points
+  /// of the fits to the others before and after (after ≤ before: a sweep that raised it is
+  /// undone).
+  double before = 0, after = 0, held_out_before = 0, held_out_after = 0;
+  /// Whether the sweeps were judged on held-out data (KnotOptimisationOptions::held_out).
+  bool judged_on_held_out = false;
   int undone_sweeps = 0;
 };
 
