@@ -90,7 +90,9 @@ TEST(VolumeFitting, FairingDampsOvershootBetweenTheDataAndKeepsPolynomials) {
   };
   const auto [plain_max, plain_data] = truth_errors(0);
   const auto [faired_max, faired_data] = truth_errors(0.1);
-  EXPECT_LT(faired_max, 0.5 * plain_max) << plain_max << " -> " << faired_max;
+  // Measured: 1.66 unfaired; 0.54 with one difference per tetrahedron (x, y, z in turn), 0.26
+  // with differences along all three axes in every tetrahedron (the rows since 2026-12-07).
+  EXPECT_LT(faired_max, 0.25 * plain_max) << plain_max << " -> " << faired_max;
   EXPECT_LT(faired_data, 1.2 * plain_data);
   // Samples of a polynomial of degree n minimise both terms, so they are reproduced up to the
   // convergence of the iterated Tikhonov steps (1e-13 in most configurations, 1.4e-6 for this
