@@ -188,6 +188,7 @@ nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& 
                             {"vertices_above_threshold", k.vertices_tried},
                             {"vertices_moved", k.vertices_moved},
                             {"primary_knots_moved", k.primary_knots_moved},
+                            {"sweeps_kept", k.kept_sweeps},
                             {"sweeps_undone", k.undone_sweeps},
                             {"field_normalised_mean_square_before", k.before},
                             {"field_normalised_mean_square_after", k.after},
@@ -345,7 +346,7 @@ void fit_file(const FitRequest& r) {
     const KnotOptimisationReport& k = statistics.knot_optimisation;
     if (r.knots == "optimise")
       std::cout << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved ("
-              << k.primary_knots_moved << " with their primary knot) in " << k.sweeps << " sweeps, normalised field mean square " << format_double(k.before) << " -> " << format_double(k.after)
+              << k.primary_knots_moved << " with their primary knot) in " << k.sweeps << " sweeps (" << k.kept_sweeps << " kept), normalised field mean square " << format_double(k.before) << " -> " << format_double(k.after)
                 << (k.judged_on_held_out ? " (at the held-out eighth of the points: " + format_double(k.held_out_before) + " -> " + format_double(k.held_out_after) + ")"
                                          : std::string(" (judged at the data)"))
                 << "\n";

@@ -220,6 +220,7 @@ py::dict fit_statistics(const VolumeFitStatistics& s) {
   optimisation["vertices_above_threshold"] = s.knot_optimisation.vertices_tried;
   optimisation["vertices_moved"] = s.knot_optimisation.vertices_moved;
   optimisation["primary_knots_moved"] = s.knot_optimisation.primary_knots_moved;
+  optimisation["sweeps_kept"] = s.knot_optimisation.kept_sweeps;
   optimisation["sweeps_undone"] = s.knot_optimisation.undone_sweeps;
   optimisation["normalised_mean_square_before"] = s.knot_optimisation.before;
   optimisation["normalised_mean_square_after"] = s.knot_optimisation.after;
@@ -397,9 +398,7 @@ all). knots: 'fixed', 'place' (primary knots placed by error equidistribution, j
 data) or 'optimise' (place, then §5.3's local step on the knot clouds: knot_sweeps passes; primary
 knots move with their sub-knots where the domain stays the same unless fixed_primary_knots; a sweep is
 kept if it lowers the error at the held-out eighth of the points, or at the data with
-judge_local_step_at_data); error >
-0 refines adaptively (§5.4) within
-max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
+judge_local_step_at_data); error > 0 refines adaptively (§5.4) within max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
 (docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
 per attribute, raw and normalised to the data range.)");
 

@@ -53,6 +53,7 @@ int VolumeData::attribute_column(const std::string& name) const {
 }
 
 VolumeData every_nth_point(const VolumeData& data, std::size_t every, std::size_t which, bool keep) {
+  if (every == 0) throw InvalidInput("every_nth_point: expected every >= 1, got 0");
   VolumeData out;
   out.attribute_names = data.attribute_names;
   std::vector<Eigen::Index> rows;

@@ -160,8 +160,10 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& fitted_volume, VolumeFitE
     if (held_out.size() >= 16) {
       try {
         // The fit to the training points alone, with its own prior (the old fit's would carry
-        // the held-out points into it).
+        // the held-out points into it), then refitted as every sweep's refit is (its prior the
+        // fit before), so that the first sweep is not judged on a change of prior as well.
         VolumeFitErrors training_errors = fit_control_vectors(volume, training, fit_options);
+        if (training_errors.fitted_points > 0) training_errors = fit_control_vectors(volume, training, refit);
         if (training_errors.fitted_points > 0) {
           errors = std::move(training_errors);
           fitting = &training;
@@ -463,16 +465,24 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& fitted_volume, VolumeFitE
   }
   if (kept_sweeps == 0) return report;
   if (report.judged_on_held_out) {
-    // The knots kept could not be fitted to all the data, or lost a point: the fit given stays.
+    // The knots kept could not be fitted to all the data, or lost a point: the fit given stays,
+    // and the report counts the kept sweeps as undone.
+    bool refitted_all = false;
     try {
       VolumeFitErrors refitted = fit_control_vectors(volume, all_data, refit);
-      if (refitted.fitted_points != fitted_errors.fitted_points) return report;
-      errors = std::move(refitted);
+      if (refitted.fitted_points == fitted_errors.fitted_points) {
+        errors = std::move(refitted);
+        refitted_all = true;
+      }
     } catch (const InvalidInput&) {
+    }
+    if (!refitted_all) {
+      report.undone_sweeps += kept_sweeps;
       return report;
     }
     report.held_out_after = held_error;
   }
+  report.kept_sweeps = kept_sweeps;
   fitted_volume = std::move(volume);
   fitted_errors = std::move(errors);
   report.after = mean_normalised_field_error(fitted_errors);

@@ -171,8 +171,7 @@ TEST_F(FitCli, KnotSweepsAndFixedPrimaryKnotsReachTheLocalStep) {
   // `other` = xy is quadratic: degree 1 leaves errors for the local step to lower. A degree-1 DMS
   // spline is the piecewise linear interpolant at the primary knots whatever the sub-knots, so
   // only moving primary knots can lower it.
-  // Judged at the data: on 8^3 points the held-out eighth (64 points) refuses these moves
-  // (checked below).
+  // Judged at the data first, then (below) on the held-out eighth of the points.
   for (const bool fixed : {false, true}) {
     const auto r = run("fit " + path("data.csv") + " --degree 1 --attributes other --primary-knots 40 --knots optimise --placement-rounds 0 "
                        "--knot-sweeps 3 --judge-local-step-at-data" + std::string(fixed ? " --fixed-primary-knots" : "") + " --stats " + path("s.json") + " -o " + path("m.json"));
@@ -188,6 +187,7 @@ TEST_F(FitCli, KnotSweepsAndFixedPrimaryKnotsReachTheLocalStep) {
     } else {
       EXPECT_GT(k["primary_knots_moved"].get<int>(), 0);
       EXPECT_LE(k["primary_knots_moved"].get<int>(), k["vertices_moved"].get<int>());
+      EXPECT_GT(k["sweeps_kept"].get<int>(), 0);
       EXPECT_LT(after, 0.95 * before);
     }
   }
@@ -203,10 +203,13 @@ TEST_F(FitCli, KnotSweepsAndFixedPrimaryKnotsReachTheLocalStep) {
   const double held_after = k["held_out_field_normalised_mean_square_after"].get<double>();
   EXPECT_GT(held_before, 0);
   EXPECT_LE(held_after, held_before);
-  if (k["sweeps_undone"].get<int>() > 0 && k["sweeps"].get<int>() == 1) {
-    EXPECT_EQ(held_after, held_before);
-    EXPECT_EQ(k["field_normalised_mean_square_after"].get<double>(), k["field_normalised_mean_square_before"].get<double>());
-  }
+  // Measured: with each move checked at its ring's held-out points, the three sweeps are kept
+  // and lower the error at the 64 held-out points by a tenth (2.07e-4 -> 1.86e-4).
+  const int kept = k["sweeps_kept"].get<int>();
+  EXPECT_NE(r.out.find("(" + std::to_string(kept) + " kept)"), std::string::npos) << r.out;
+  ASSERT_GT(kept, 0);
+  EXPECT_LT(held_after, 0.95 * held_before);
+  EXPECT_LT(k["field_normalised_mean_square_after"].get<double>(), k["field_normalised_mean_square_before"].get<double>());
 }
 
 TEST_F(FitCli, BaselinesAreFittedToTheSameDataAndCompared) {

@@ -207,7 +207,8 @@ struct KnotOptimisationReport {
   double before = 0, after = 0, held_out_before = 0, held_out_after = 0;
   /// Whether the sweeps were judged on held-out data (KnotOptimisationOptions::held_out).
   bool judged_on_held_out = false;
-  int undone_sweeps = 0;
+  /// Sweeps kept (their knots are the result) and undone; with none kept the fit is the one given.
+  int kept_sweeps = 0, undone_sweeps = 0;
 };
 
 struct VolumeFitOptions {
