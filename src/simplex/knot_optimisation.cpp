@@ -211,15 +211,6 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& fitted_volume, VolumeFitE
     std::vector<std::vector<std::size_t>> held(domain.tetrahedra.size());
     for (std::size_t i = 0; i < data.size(); ++i)
       if (local.point_tetrahedron[i] >= 0) held[static_cast<std::size_t>(local.point_tetrahedron[i])].push_back(i);
-    // The held-out points by tetrahedron, for the check of each move.
-    std::vector<std::vector<std::size_t>> held_out_in(domain.tetrahedra.size());
-    if (report.judged_on_held_out) {
-      DmsSplineEvaluator locator(volume);
-      for (std::size_t i = 0; i < held_out.size(); ++i) {
-        const int t = locator.locate(held_out.points[i]);
-        if (t >= 0) held_out_in[static_cast<std::size_t>(t)].push_back(i);
-      }
-    }
     // The 1-ring errors and the vertices above the threshold, worst first.
     std::vector<double> ring_error(domain.points.size(), 0);
     double sum = 0;
@@ -251,6 +242,13 @@ KnotOptimisationReport optimise_knots(DmsSplineVolume& fitted_volume, VolumeFitE
     KnotClouds clouds = volume.knots();
     TetrahedralMesh moved_domain = domain;  // the primary knots as moved so far this sweep
     DmsSplineEvaluator evaluator(volume);
+    // The held-out points by tetrahedron, for the check of each move.
+    std::vector<std::vector<std::size_t>> held_out_in(domain.tetrahedra.size());
+    if (report.judged_on_held_out)
+      for (std::size_t i = 0; i < held_out.size(); ++i) {
+        const int t = evaluator.locate(held_out.points[i]);
+        if (t >= 0) held_out_in[static_cast<std::size_t>(t)].push_back(i);
+      }
     const Eigen::MatrixXd& control = volume.control_vectors();
     std::size_t moved = 0;
     // Tetrahedron t's part of the spline at x (its value_stencil given), normalised, added to out.
