@@ -268,8 +268,8 @@ void fit_file(const FitRequest& r) {
   options.knots.sweeps = r.knot_sweeps;
   if (!(r.fairing >= 0) || !std::isfinite(r.fairing)) throw InvalidInput("expected a fairing weight >= 0, got " + format_double(r.fairing), "--fairing");
   options.fit.fairing = r.fairing;
-  // An explicit --fairing, 0 too, is kept on grid data.
-  if (r.fairing_option && r.fairing_option->count() > 0) options.grid_fairing = r.fairing;
+  // An explicit --fairing, 0 too, is kept.
+  if (r.fairing_option && r.fairing_option->count() > 0) options.default_fairing = r.fairing;
   if (!(r.jump >= 0) || !std::isfinite(r.jump)) throw InvalidInput("expected a jump >= 0, got " + format_double(r.jump), "--jump");
   options.jump = r.jump;
   options.refinement.error = r.error;
@@ -390,7 +390,7 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--attributes", r->attributes, "the attributes to fit, comma-separated (default: all)");
   cmd->add_option("--primary-knots", r->primary_knots, "the number of primary knots (domain vertices; default: points / (2 (n+1)(n+2)), points / 24 for degree 2)");
   cmd->add_option("--primary-knots-layout", r->layout,
-                  "auto (default: lattice for data on a complete regular grid, with --fairing 0.1 unless given, and farthest "
+                  "auto (default: lattice for data on a complete regular grid, and farthest "
                   "otherwise or with --jump or --knots place/optimise), farthest (data points by farthest-point sampling) or "
                   "lattice (a body-centred cubic lattice over the bounding box: congruent tetrahedra; docs/fitting.md, \"Grid data\")");
   cmd->add_option("--error", r->error,
@@ -419,8 +419,8 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--stats", r->stats, "write the fit statistics (Hua-He-Qin Table 1 and more) to this JSON file");
   r->fairing_option = cmd->add_option("--fairing", r->fairing,
                   "weight of the fairing term (finite differences of order n+1, zero on polynomials of degree <= n) against "
-                  "the data term (default 0: none, 0.1 with the lattice layout auto chooses for grid data; 0.1 damps ringing "
-                  "next to the boundary, docs/fitting.md)");
+                  "the data term (default 0.1, 0 with --jump; it damps ringing between the samples next to the boundary; 0: "
+                  "none; docs/fitting.md, \"Fairing\")");
   cmd->add_option("--jump", r->jump,
                   "sharp features (Hua-He-Qin 4.2): neighbouring points whose normalised values differ by more than J are on two "
                   "sides of a jump; the surface between them becomes a domain interface with knots on it and no control vector "

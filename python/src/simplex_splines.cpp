@@ -9,6 +9,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -353,13 +354,13 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
   m.def(
       "fit",
       [](const py::object& data, int degree, const std::vector<std::string>& attributes, int primary_knots, const std::string& knots,
-         double error, long long max_tetrahedra, double fairing, int knot_sweeps, bool fixed_primary_knots, bool judge_local_step_at_data,
+         double error, long long max_tetrahedra, std::optional<double> fairing, int knot_sweeps, bool fixed_primary_knots, bool judge_local_step_at_data,
          const py::object& progress) {
         VolumeData samples = select_attributes(volume_data_from(data), attributes);
         if (samples.attribute_names.empty()) throw InvalidInput("data: no attributes to fit (only x, y, z)");
         if (knots != "fixed" && knots != "place" && knots != "optimise")
           throw InvalidInput("knots: expected fixed, place or optimise, got '" + knots + "'");
-        if (primary_knots < 0 || !(error >= 0) || max_tetrahedra < 0 || !(fairing >= 0) || !std::isfinite(fairing))
+        if (primary_knots < 0 || !(error >= 0) || max_tetrahedra < 0 || (fairing && (!(*fairing >= 0) || !std::isfinite(*fairing))))
           throw InvalidInput("primary_knots, error, max_tetrahedra and fairing: expected finite numbers >= 0");
         if (knot_sweeps < 1 || knot_sweeps > 50) throw InvalidInput("knot_sweeps: expected 1 to 50, got " + std::to_string(knot_sweeps));
         VolumeFitOptions options;
@@ -372,7 +373,8 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
         options.knots.held_out = !judge_local_step_at_data;
         options.refinement.error = error;
         options.refinement.max_tetrahedra = static_cast<std::size_t>(max_tetrahedra);
-        options.fit.fairing = fairing;
+        // Given (0 too), the weight is used as it is; None: the default (0.1, unfaired with a jump).
+        if (fairing) options.fit.fairing = options.default_fairing = *fairing;
         PythonProgress listener(progress);
         Progress* reports = listener.get();
         VolumeFit result = [&] {
@@ -389,7 +391,7 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
       },
       py::arg("data"), py::arg("degree") = 2, py::kw_only(), py::arg("attributes") = std::vector<std::string>{},
       py::arg("primary_knots") = 0, py::arg("knots") = "fixed", py::arg("error") = 0.0, py::arg("max_tetrahedra") = 0,
-      py::arg("fairing") = ControlVectorFitOptions{}.fairing, py::arg("knot_sweeps") = KnotOptimisationOptions{}.sweeps,
+      py::arg("fairing") = py::none(), py::arg("knot_sweeps") = KnotOptimisationOptions{}.sweeps,
       py::arg("fixed_primary_knots") = false, py::arg("judge_local_step_at_data") = false, py::arg("progress") = py::none(),
       R"(Fits scattered volume data with a DMS simplex spline (Hua-He-Qin §5), as `volspline fit`. data: a
 file (.csv with a header, .ply, .vtu, .vti, .vtk, .nii, .inr), 'marschner-lobb:N' or 'two-material:N',
@@ -399,7 +401,7 @@ data) or 'optimise' (place, then §5.3's local step on the knot clouds: knot_swe
 knots move with their sub-knots where the domain stays the same unless fixed_primary_knots; a sweep is
 kept if it lowers the error at the held-out eighth of the points, or at the data with
 judge_local_step_at_data); error > 0 refines adaptively (§5.4) within max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
-(docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
+(default None: 0.1, unfaired with a jump; 0: none; docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
 per attribute, raw and normalised to the data range.)");
 
   m.def(

@@ -139,7 +139,8 @@ def test_fit_reproduces_a_linear_field_and_reports_table_1():
     inside = p[volume.evaluate(p)["inside"]]
     values = volume.evaluate(inside)["attributes"]["temperature"]
     assert np.abs(values - (2 * inside[:, 0] - inside[:, 1] + 0.5 * inside[:, 2])).max() < 1e-9
-    assert stats["primary_knots_layout"] == "farthest" and stats["fairing"] == 0
+    assert stats["primary_knots_layout"] == "farthest" and stats["fairing"] == 0.1
+    assert volspline.fit(data, 1, fairing=0)[1]["fairing"] == 0
     with pytest.raises(volspline.InvalidInput, match="temperature|pressure"):
         volspline.fit(data, 1, attributes=["pressure"])
 

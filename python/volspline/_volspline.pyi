@@ -266,7 +266,7 @@ def extrude(profile: Surface, vector: numpy.ndarray) -> Volume:
 def ffd(lattice: object, x: object) -> object:
     """Free-form deformation through a lattice (a Lattice, or a lattice file or its objects) (ffd LATTICE INPUT): a mesh dict gives the deformed mesh; points (N, 3) the deformed points; a Curve, Surface or Volume its exact composition with the lattice map (degrees multiply); a model (a path, objects or a list of them) its deformed objects as the command line's ffd writes them (curves and surfaces composed exactly, simplex spline volumes by their control points). A point outside the box moves as the nearest point of the box does (docs/ffd.md)."""
 
-def fit(data: object, degree: int = ..., *, attributes: List[str] = ..., primary_knots: int = ..., knots: str = ..., error: float = ..., max_tetrahedra: int = ..., fairing: float = ..., knot_sweeps: int = ..., fixed_primary_knots: bool = ..., judge_local_step_at_data: bool = ..., progress: object = ...) -> tuple:
+def fit(data: object, degree: int = ..., *, attributes: List[str] = ..., primary_knots: int = ..., knots: str = ..., error: float = ..., max_tetrahedra: int = ..., fairing: Optional[float] = ..., knot_sweeps: int = ..., fixed_primary_knots: bool = ..., judge_local_step_at_data: bool = ..., progress: object = ...) -> tuple:
     """Fits scattered volume data with a DMS simplex spline (Hua-He-Qin §5), as `volspline fit`. data: a
 file (.csv with a header, .ply, .vtu, .vti, .vtk, .nii, .inr), 'marschner-lobb:N' or 'two-material:N',
 or a dict {'points': (N, 3), 'attributes': {name: (N,)}}. attributes: the columns to fit (default
@@ -275,7 +275,7 @@ data) or 'optimise' (place, then §5.3's local step on the knot clouds: knot_swe
 knots move with their sub-knots where the domain stays the same unless fixed_primary_knots; a sweep is
 kept if it lowers the error at the held-out eighth of the points, or at the data with
 judge_local_step_at_data); error > 0 refines adaptively (§5.4) within max_tetrahedra; fairing: the weight of the term that damps oscillations between data points
-(docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
+(default None: 0.1, unfaired with a jump; 0: none; docs/fitting.md). Returns (SimplexSplineVolume, stats): the paper's Table 1 figures and the errors
 per attribute, raw and normalised to the data range."""
 
 def half_cylinder_sweep() -> Volume:

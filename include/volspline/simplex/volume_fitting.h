@@ -224,11 +224,14 @@ struct VolumeFitOptions {
   /// Knot cloud spread (knot_clouds.h).
   double spread = 0.15;
   /// Data on a complete regular grid (is_complete_grid: images, generated grids) get the lattice
-  /// layout (domain.lattice) and, where fit.fairing is 0, fairing grid_fairing; not with a jump
-  /// or knot optimisation (they place knots at data points). false: the options as given.
-  /// docs/fitting.md, "Grid data".
+  /// layout (domain.lattice); not with a jump or knot optimisation (they place knots at data
+  /// points). false: the layout as given. docs/fitting.md, "Grid data".
   bool grid_layout = true;
-  double grid_fairing = 0.1;
+  /// Where fit.fairing is 0 the fit is faired with this weight (0: unfaired), except with a jump
+  /// (its fits were measured unfaired; fairing stencils stay on their side of the interface):
+  /// unfaired, basis functions next to ∂Ω that few data see ring between the samples
+  /// (docs/fitting.md, "Fairing").
+  double default_fairing = 0.1;
   ControlVectorFitOptions fit;
   AdaptiveRefinementOptions refinement;
   KnotOptimisationOptions knots;
