@@ -215,7 +215,10 @@ Eigen::MatrixXd polynomial_prior(const DmsSplineVolume& volume, const Collocatio
         }
         targets.row(static_cast<Eigen::Index>(j)) = data.attributes.row(members[p][j]);
       }
-      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(design);
+      // A part whose points barely determine the polynomial (a thin slab, a few layers) keeps the
+      // linear prior: a badly conditioned fit would extrapolate to the knots few points see.
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(design);
+      qr.setThreshold(1e-8);
       if (qr.rank() < mcount) continue;
       poly[p] = qr.solve(targets);
       ok[p] = true;
