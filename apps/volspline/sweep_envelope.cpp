@@ -131,14 +131,14 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   if (!(a.coarse_cells >= 0 && a.coarse_cells * a.tol < 0.5))
     throw InvalidInput("expected 0 (off) or a positive multiple of --tol below 0.5 / tol", "--coarse-cells");
   if (!(a.refine > 0 && a.refine <= 1)) throw InvalidInput("expected a multiple of --tol in (0, 1]", "--refine");
-  if (a.adaptive_cells != 0 && (a.adaptive_cells < 2 || a.adaptive_cells > 16 || a.adaptive_cells % 2 != 0))
-    throw InvalidInput("expected 0 (off) or an even number from 2 to 16", "--adaptive-cells");
+  if (a.adaptive_cells != 0 && (a.adaptive_cells < 2 || a.adaptive_cells > 64 || a.adaptive_cells % 2 != 0))
+    throw InvalidInput("expected 0 (off) or an even number from 2 to 64", "--adaptive-cells");
   const bool adaptive_cells_given = a.adaptive_cells_option != nullptr && a.adaptive_cells_option->count() > 0;
   if (adaptive_cells_given && a.coarse_cells > 0) throw InvalidInput("give --coarse-cells or --adaptive-cells, not both", "--adaptive-cells");
   if (adaptive_cells_given && a.adaptive_cells * 3 * a.tol >= 0.25)
     throw InvalidInput("expected --adaptive-cells x 3 x --tol below 0.25", "--adaptive-cells");
   options.coarse_cell_factor = a.coarse_cells;
-  options.adaptive_ratio = a.coarse_cells > 0 ? 0 : a.adaptive_cells;
+  options.adaptive_ratio = a.coarse_cells > 0 ? 0 : adaptive_cells_given ? a.adaptive_cells : SweptEnvelopeOptions::kAutomaticRatio;
   options.refinement_factor = a.refine;
   options.trim = !a.superset;
   if (a.bounds == "bezier") options.bounds = JacobianBoundMethod::Bezier;
@@ -241,9 +241,10 @@ void add_sweep_envelope_command(CLI::App& app) {
                   "instead of the default fine grid (3 x tol): much faster on smooth sweeps, creases it cannot resolve are "
                   "chamfered and counted (docs/envelopes.md, \"Refinement toward the sheets\"; default 0: off)");
   a->adaptive_cells_option = cmd->add_option("--adaptive-cells", a->adaptive_cells,
-                  "contour on cells this many times the fine grid (3 x tol; an even number up to 16), split into fine "
+                  "contour on cells this many times the fine grid (3 x tol; an even number up to 64), split into fine "
                   "cells only where the boundary bends sharply (creases) or the check of the result asks for it, edges refined "
-                  "toward the sheets' equations (docs/envelopes.md, \"Adaptive cells\"; default 4; 0: the uniform fine grid)");
+                  "toward the sheets' equations (docs/envelopes.md, \"Adaptive cells\"; default: 4 at --tol 1e-3 and above, "
+                  "4 x the power of two nearest 1e-3 / tol below, 32 at 1e-4; 0: the uniform fine grid)");
   cmd->add_option("--refine", a->refine, "with --coarse-cells or --adaptive-cells: split edges until their midpoints are within this multiple of --tol of the sheet (default 0.25)");
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (parts coloured by source)");

@@ -99,7 +99,7 @@ InvalidInput for a frame whose determinant vanishes on [0, 1].)");
   m.def(
       "sweep_envelope",
       [](const py::object& solid, double tolerance, const std::string& bounds, bool superset, std::int64_t max_cells,
-         const std::string& trimming, double coarse_cells, int adaptive_cells, double refine, const py::object& progress) {
+         const std::string& trimming, double coarse_cells, std::optional<int> adaptive_cells, double refine, const py::object& progress) {
         std::vector<BSplineHypervolume> patches = patches_from(solid);
         SweptEnvelopeOptions options;
         options.tolerance = tolerance;
@@ -113,10 +113,10 @@ InvalidInput for a frame whose determinant vanishes on [0, 1].)");
         if (!(coarse_cells >= 0 && coarse_cells * tolerance < 0.5))
           throw InvalidInput("coarse_cells: expected 0 (off) or a positive multiple of the tolerance below 0.5 / tolerance");
         if (!(refine > 0 && refine <= 1)) throw InvalidInput("refine: expected a multiple of the tolerance in (0, 1]");
-        if (adaptive_cells != 0 && (adaptive_cells < 2 || adaptive_cells > 16 || adaptive_cells % 2 != 0))
-          throw InvalidInput("adaptive_cells: expected 0 (the uniform fine grid) or an even number from 2 to 16");
+        if (adaptive_cells && *adaptive_cells != 0 && (*adaptive_cells < 2 || *adaptive_cells > 64 || *adaptive_cells % 2 != 0))
+          throw InvalidInput("adaptive_cells: expected None (chosen from the tolerance), 0 (the uniform fine grid) or an even number from 2 to 64");
         options.coarse_cell_factor = coarse_cells;
-        options.adaptive_ratio = coarse_cells > 0 ? 0 : adaptive_cells;
+        options.adaptive_ratio = coarse_cells > 0 ? 0 : adaptive_cells ? *adaptive_cells : SweptEnvelopeOptions::kAutomaticRatio;
         options.refinement_factor = refine;
         PythonProgress listener(progress);
         options.progress = listener.get();
@@ -161,7 +161,7 @@ InvalidInput for a frame whose determinant vanishes on [0, 1].)");
         return out;
       },
       py::arg("solid"), py::arg("tolerance") = 1e-3, py::arg("bounds") = "bezier", py::arg("superset") = false,
-      py::arg("max_cells") = 2000000, py::arg("trimming") = "auto", py::arg("coarse_cells") = 0.0, py::arg("adaptive_cells") = 4,
+      py::arg("max_cells") = 2000000, py::arg("trimming") = "auto", py::arg("coarse_cells") = 0.0, py::arg("adaptive_cells") = py::none(),
       py::arg("refine") = 0.25,
       py::arg("progress") = py::none(),
       R"(The boundary of the volume a swept solid sweeps, as `volspline sweep-envelope`. solid: a SweptSolid,
@@ -169,9 +169,10 @@ a Hypervolume or a list of them. superset=True gives the paper's untrimmed super
 face and edge sweeps 14, the rank-deficient set 15); otherwise it is trimmed to the true boundary
 by a certified point-in-image test (trimming: 'auto', 'arrangement' or 'contouring'; coarse_cells=16
 contours a grid of 16 tolerances and refines it toward the sheets' equations to refine x tolerance,
-as --coarse-cells: much faster on smooth sweeps, creases not resolved yet; otherwise adaptive_cells=4,
-the default, contours on cells 4 x the fine grid split into fine cells at creases, as
---adaptive-cells, and adaptive_cells=0 on the uniform fine grid). Returns a
+as --coarse-cells: much faster on smooth sweeps, creases not resolved yet; otherwise adaptive_cells=M
+contours on cells M x the fine grid split into fine cells at creases, as --adaptive-cells: None,
+the default, chooses 4 at tolerances of 1e-3 and above and 32 at 1e-4; adaptive_cells=0 contours on
+the uniform fine grid). Returns a
 mesh dict whose parameters are each vertex's (u, v, w), plus times (t per vertex), patches (the
 generator patch per vertex) and stats (triangles per source, cells, closed, oriented,
 self_intersection_free, components, volume, seconds).)");

@@ -330,15 +330,16 @@ mesh dict) meshed by CGAL Mesh_3 with cells of at most cell_size (0: diagonal / 
 def sweep(profile: Surface, path: Curve, frame: str = ...) -> Volume:
     """Sweep a profile surface along a curve with a moving frame, V = c(w) + R(w) F(u, v) (make sweep)."""
 
-def sweep_envelope(solid: object, tolerance: float = ..., bounds: str = ..., superset: bool = ..., max_cells: int = ..., trimming: str = ..., coarse_cells: float = ..., adaptive_cells: int = ..., refine: float = ..., progress: object = ...) -> dict:
+def sweep_envelope(solid: object, tolerance: float = ..., bounds: str = ..., superset: bool = ..., max_cells: int = ..., trimming: str = ..., coarse_cells: float = ..., adaptive_cells: Optional[int] = ..., refine: float = ..., progress: object = ...) -> dict:
     """The boundary of the volume a swept solid sweeps, as `volspline sweep-envelope`. solid: a SweptSolid,
 a Hypervolume or a list of them. superset=True gives the paper's untrimmed superset (caps part 13,
 face and edge sweeps 14, the rank-deficient set 15); otherwise it is trimmed to the true boundary
 by a certified point-in-image test (trimming: 'auto', 'arrangement' or 'contouring'; coarse_cells=16
 contours a grid of 16 tolerances and refines it toward the sheets' equations to refine x tolerance,
-as --coarse-cells: much faster on smooth sweeps, creases not resolved yet; otherwise adaptive_cells=4,
-the default, contours on cells 4 x the fine grid split into fine cells at creases, as
---adaptive-cells, and adaptive_cells=0 on the uniform fine grid). Returns a
+as --coarse-cells: much faster on smooth sweeps, creases not resolved yet; otherwise adaptive_cells=M
+contours on cells M x the fine grid split into fine cells at creases, as --adaptive-cells: None,
+the default, chooses 4 at tolerances of 1e-3 and above and 32 at 1e-4; adaptive_cells=0 contours on
+the uniform fine grid). Returns a
 mesh dict whose parameters are each vertex's (u, v, w), plus times (t per vertex), patches (the
 generator patch per vertex) and stats (triangles per source, cells, closed, oriented,
 self_intersection_free, components, volume, seconds)."""

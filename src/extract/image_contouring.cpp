@@ -138,8 +138,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     throw InvalidInput("expected 0 <= superset_error < 0.5", "superset_error");
   if (options.bisection_steps < 1 || options.bisection_steps > 60) throw InvalidInput("expected 1 to 60 bisection steps", "bisection_steps");
   if (options.max_cells < 1) throw InvalidInput("expected a positive budget of cells", "max_cells");
-  if (options.coarse_ratio < 1 || options.coarse_ratio > 16 || (options.coarse_ratio > 1 && options.coarse_ratio % 2 != 0))
-    throw InvalidInput("expected a coarse ratio of 1 or an even number up to 16", "coarse_ratio");
+  if (options.coarse_ratio < 1 || options.coarse_ratio > 64 || (options.coarse_ratio > 1 && options.coarse_ratio % 2 != 0))
+    throw InvalidInput("expected a coarse ratio of 1 or an even number up to 64", "coarse_ratio");
   if (!(options.refinement_tolerance >= 0 && options.refinement_tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_tolerance < 0.5", "refinement_tolerance");
   if (!(options.verification_distance >= 0 && options.verification_distance < 0.5))
@@ -1240,6 +1240,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   auto refine_cells_at = [&] {
     std::size_t split_before = 0;
     for (const auto& s : split) split_before += s.size();
+    // The unit cube holding each point and the width of the leaf around it.
     std::vector<std::pair<LatticeIndex, std::int64_t>> centres;
     for (const Eigen::Vector3d& p : beyond_points) {
       LatticeIndex u{};
@@ -1249,31 +1250,47 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             grid.n[d] - 2);
       // Where the edge lies in unit cells already, refining more would not change it.
       const std::int64_t s = leaf_size(u);
-      if (s > 1) centres.emplace_back(floor_to(u, s), s);
+      if (s > 1) centres.emplace_back(u, s);
     }
-    for (const auto& [i, s] : centres) {
-      const std::size_t l = level_of(s);
-      for (std::int64_t dk = -1; dk <= 1; ++dk)
-        for (std::int64_t dj = -1; dj <= 1; ++dj)
-          for (std::int64_t di = -1; di <= 1; ++di) {
-            const LatticeIndex j{i[0] + s * di, i[1] + s * dj, i[2] + s * dk};
-            bool in_grid = true;
-            for (std::size_t d = 0; d < 3; ++d) in_grid = in_grid && j[d] >= 0 && j[d] <= grid.n[d] - 1 - s;
-            if (!in_grid) continue;
-            // Its ancestors, itself and its descendants down to unit cells.
-            for (std::size_t a = 0; a < l; ++a) split[a].insert(index_key(floor_to(j, level_size[a])));
-            std::vector<std::pair<std::uint64_t, std::size_t>> todo{{index_key(j), l}};
-            while (!todo.empty()) {
-              const auto [cell, level] = todo.back();
-              todo.pop_back();
-              if (level + 1 >= levels) continue;
-              split[level].insert(cell);
-              const std::int64_t child = level_size[level + 1], n = level_size[level] / child;
-              for (std::int64_t k = 0; k < n; ++k)
-                for (std::int64_t jj = 0; jj < n; ++jj)
-                  for (std::int64_t ii = 0; ii < n; ++ii) todo.emplace_back(offset_key(cell, ii * child, jj * child, k * child), level + 1);
+    // Splits cell j (level l) and its ancestors; with `to_unit`, its descendants down to unit
+    // cells as well.
+    const auto split_cell = [&](const LatticeIndex& j, std::size_t l, bool to_unit) {
+      for (std::size_t a = 0; a < l; ++a) split[a].insert(index_key(floor_to(j, level_size[a])));
+      std::vector<std::pair<std::uint64_t, std::size_t>> todo{{index_key(j), l}};
+      while (!todo.empty()) {
+        const auto [cell, level] = todo.back();
+        todo.pop_back();
+        if (level + 1 >= levels) continue;
+        split[level].insert(cell);
+        if (!to_unit) continue;
+        const std::int64_t child = level_size[level + 1], n = level_size[level] / child;
+        for (std::int64_t k = 0; k < n; ++k)
+          for (std::int64_t jj = 0; jj < n; ++jj)
+            for (std::int64_t ii = 0; ii < n; ++ii) todo.emplace_back(offset_key(cell, ii * child, jj * child, k * child), level + 1);
+      }
+    };
+    // Graded toward the point (decision, 2026-12-07): cells wider than kFullSplitWidth are split
+    // one level, with their 26 neighbours of the same width, and so on into the half holding the
+    // point; from that width down the cell and its 26 neighbours are split to unit cells. With
+    // the default coarse cells (4 units) this is the full split it always was; with the coarse
+    // cells of fine tolerances (32 units at 1e-4) a full split of 27 coarse cells would be
+    // 27 x 32^3 unit cells per point.
+    constexpr std::int64_t kFullSplitWidth = 4;
+    for (const auto& [u, leaf] : centres) {
+      for (std::size_t l = level_of(leaf); l + 1 < levels; ++l) {
+        const std::int64_t s = level_size[l];
+        const LatticeIndex i = floor_to(u, s);
+        const bool to_unit = s <= kFullSplitWidth;
+        for (std::int64_t dk = -1; dk <= 1; ++dk)
+          for (std::int64_t dj = -1; dj <= 1; ++dj)
+            for (std::int64_t di = -1; di <= 1; ++di) {
+              const LatticeIndex j{i[0] + s * di, i[1] + s * dj, i[2] + s * dk};
+              bool in_grid = true;
+              for (std::size_t d = 0; d < 3; ++d) in_grid = in_grid && j[d] >= 0 && j[d] <= grid.n[d] - 1 - s;
+              if (in_grid) split_cell(j, l, to_unit);
             }
-          }
+        if (to_unit) break;
+      }
     }
     std::size_t split_after = 0;
     for (const auto& s : split) split_after += s.size();

@@ -160,6 +160,13 @@ std::vector<PatchFolds> three_face_folds(const std::vector<BSplineHypervolume>& 
   // The zero surfaces' flatness tolerance is on J relative to its scale; linear interpolation in
   // cells that flat places vertices within about tolerance of the surface.
   zero.tolerance = std::min(0.05, 10 * options.tolerance);
+  // The flatness of J says nothing of how far the map bends across a cell, so the triangles'
+  // chords stand off the fold by about the square of the cell's size: the capsule's cylinder
+  // 4.8e-4 of the diagonal at level 3. The contouring assumes the superset within 2 x the
+  // tolerance of the sheets (superset_error) and finds no sheet crossing where it is farther,
+  // so below 1e-3 the cells go one level finer for every factor 4 (the chords' error falls
+  // with the tolerance; docs/envelopes.md, "Fine tolerances").
+  zero.min_level = 3 + (options.tolerance < 1e-3 ? static_cast<int>(std::ceil(0.5 * std::log2(1e-3 / options.tolerance) - 1e-9)) : 0);
   zero.max_cells = options.max_cells;
   zero.bounds = options.bounds;
   zero.snap = true;
@@ -338,8 +345,9 @@ void check_trimming_options(const SweptEnvelopeOptions& options) {
     throw InvalidInput("expected 0 < contour_cell_factor * tolerance < 0.5", "contour_cell_factor");
   if (!(options.coarse_cell_factor >= 0 && options.coarse_cell_factor * options.tolerance < 0.5))
     throw InvalidInput("expected 0 <= coarse_cell_factor * tolerance < 0.5", "coarse_cell_factor");
-  if (options.adaptive_ratio != 0 && (options.adaptive_ratio < 2 || options.adaptive_ratio > 16 || options.adaptive_ratio % 2 != 0))
-    throw InvalidInput("expected 0 (off) or an even adaptive ratio from 2 to 16", "adaptive_ratio");
+  if (options.adaptive_ratio != 0 && options.adaptive_ratio != SweptEnvelopeOptions::kAutomaticRatio &&
+      (options.adaptive_ratio < 2 || options.adaptive_ratio > 64 || options.adaptive_ratio % 2 != 0))
+    throw InvalidInput("expected 0 (off), kAutomaticRatio or an even adaptive ratio from 2 to 64", "adaptive_ratio");
   if (!(options.refinement_factor >= 0 && options.refinement_factor * options.tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_factor * tolerance < 0.5", "refinement_factor");
 }
@@ -529,7 +537,8 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
   // cell, failed Newton) are checked by membership tests at the tolerance and counted.
   std::string rejected;
   // Coarse cells wider than a quarter of the diagonal see nothing: the ratio is lowered to fit.
-  int adaptive_ratio = options.adaptive_ratio;
+  int adaptive_ratio = options.adaptive_ratio == SweptEnvelopeOptions::kAutomaticRatio ? automatic_adaptive_ratio(options.tolerance)
+                                                                                       : options.adaptive_ratio;
   while (adaptive_ratio >= 2 && adaptive_ratio * options.contour_cell_factor * options.tolerance >= 0.25) adaptive_ratio -= 2;
   if ((options.coarse_cell_factor > 0 || adaptive_ratio > 1) && options.refinement_factor > 0) {
     ImageContouringOptions coarse = contouring;
@@ -550,6 +559,13 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
     trimmed.stats.coarse_grid_rejected = rejected;
   }
   return finish(std::move(trimmed), EnvelopeTrimming::Contouring);
+}
+
+int automatic_adaptive_ratio(double tolerance) {
+  if (!(tolerance > 0)) throw InvalidInput("expected a positive tolerance", "tolerance");
+  if (tolerance >= 1e-3) return 4;
+  const int doublings = std::min(4, static_cast<int>(std::lround(std::log2(1e-3 / tolerance))));
+  return 4 << doublings;
 }
 
 }  // namespace volspline

@@ -154,13 +154,14 @@ TEST(ImageContouring, AdaptiveCellsAreFineOnlyAtTheCreasesAndTheContourStaysClos
     return std::optional<bool>((turn.transpose() * x).cwiseAbs().maxCoeff() <= 0.5);
   };
   // uniform fine, uniform coarse, adaptive by halves, adaptive straight to unit cells, ratio 8
-  // by halves, ratio 6.
-  constexpr int kCases = 6;
+  // by halves, ratio 6, ratio 16 by halves on unit cells of half the size (five widths, as the
+  // automatic ratio of --tol 3e-4 makes them).
+  constexpr int kCases = 7;
   std::array<TrimmedBoundary, kCases> b;
   for (int k = 0; k < kCases; ++k) {
     ImageContouringOptions options;
-    options.cell_size = k == 1 ? 0.04 : 0.01;
-    options.coarse_ratio = std::array<int, kCases>{1, 1, 4, 4, 8, 6}[static_cast<std::size_t>(k)];
+    options.cell_size = k == 1 ? 0.04 : k == 6 ? 0.005 : 0.01;
+    options.coarse_ratio = std::array<int, kCases>{1, 1, 4, 4, 8, 6, 16}[static_cast<std::size_t>(k)];
     options.halving_levels = k != 3;
     calls = 0;
     b[static_cast<std::size_t>(k)] = contour_image_boundary(superset, {}, inside, options);
@@ -183,7 +184,7 @@ TEST(ImageContouring, AdaptiveCellsAreFineOnlyAtTheCreasesAndTheContourStaysClos
   EXPECT_EQ(adaptive.grid_cells_refined, two_level.grid_cells_refined);
   EXPECT_LT(adaptive.grid_cells, two_level.grid_cells * 3 / 4);
   const double diagonal = std::sqrt(3.0);
-  for (int k = 2; k < kCases; ++k) {
+  for (int k = 2; k < 6; ++k) {
     const SupersetTrimmingStats& st = b[static_cast<std::size_t>(k)].stats;
     // Unit cells only near the edges: far fewer membership tests and triangles than the uniform
     // fine grid.
@@ -195,6 +196,9 @@ TEST(ImageContouring, AdaptiveCellsAreFineOnlyAtTheCreasesAndTheContourStaysClos
     EXPECT_GT(1 - coarse.volume, 2 * (1 - st.volume)) << k;
   }
   EXPECT_LT(1 - fine.volume, 12 * 0.5 * std::pow(0.01 * diagonal, 2));
+  // Five widths: the chamfers of unit cells half the size, a quarter of the volume.
+  EXPECT_LT(1 - b[6].stats.volume, 12 * 0.5 * std::pow(0.005 * diagonal, 2));
+  EXPECT_GT(b[6].stats.grid_cells_refined, 0);
   ImageContouringOptions odd;
   odd.coarse_ratio = 3;
   EXPECT_THROW(contour_image_boundary(superset, {}, inside, odd), InvalidInput);

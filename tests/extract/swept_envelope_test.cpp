@@ -7,6 +7,7 @@
 
 #include "volspline/construct/primitives.h"
 #include "volspline/construct/swept_examples.h"
+#include "volspline/construct/swept_solid.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
@@ -138,6 +139,63 @@ TEST(SweptEnvelope, TranslatedBallFoldsOnTheCapsulesCylinder) {
     }
   }
   EXPECT_GT(fold_vertices, 100u);
+}
+
+// The trimming finds the sheets from the superset's triangles and assumes them within twice the
+// tolerance of their sheets (ImageContouringOptions::superset_error). The folds' chords bend
+// away from the sheet by the square of their cells' size, so at fine tolerances the cells must
+// shrink with the tolerance: at level 3 whatever the tolerance, the capsule's fold chords stood
+// 4.8e-4 of the diagonal inside the cylinder, more than twice 1e-4, and at --tol 1e-4 the
+// trimming put vertices there (docs/envelopes.md, "Fine tolerances").
+TEST(SweptEnvelope, FoldChordsStayWithinTheSupersetErrorAtFineTolerances) {
+  // examples/swept-translated-ball.json: a ball of radius 1 moved by (3, 0, 0).
+  const double r = 1;
+  const Eigen::Vector3d d(3, 0, 0);
+  const std::vector<BSplineHypervolume> patches = swept_patches(translated_ball(r, d));
+  for (const double tolerance : {1e-3, 1e-4}) {
+    SweptEnvelopeOptions options;
+    options.tolerance = tolerance;
+    const SweptEnvelope superset = swept_envelope_superset(patches, options);
+    const auto [low, high] = superset.mesh.bounding_box();
+    const double diagonal = (high - low).norm();
+    double farthest = 0;
+    std::size_t chords = 0;
+    for (std::size_t f = 0; f < superset.mesh.num_triangles(); ++f) {
+      if (superset.mesh.parts[f] != part_number(Part::SweepFace)) continue;
+      // Fold triangles of the sphere's sweep: every corner at u = 1 with v, w and t inside.
+      bool fold = true;
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (int j = 0; j < 3; ++j) {
+        const auto v = static_cast<std::size_t>(superset.mesh.triangles[f][static_cast<std::size_t>(j)]);
+        const Eigen::Vector3d& p = superset.mesh.parameters[v];
+        fold = fold && p[0] == 1 && p[1] > 1e-9 && p[1] < 1 - 1e-9 && p[2] > 0 && p[2] < 1 && superset.times[v] > 1e-9 &&
+               superset.times[v] < 1 - 1e-9;
+        centroid += superset.mesh.positions[v] / 3;
+      }
+      if (!fold) continue;
+      const double t = std::clamp(centroid.dot(d) / d.squaredNorm(), 0.0, 1.0);
+      farthest = std::max(farthest, std::abs((centroid - t * d).norm() - r));
+      ++chords;
+    }
+    EXPECT_GT(chords, 100u) << tolerance;
+    EXPECT_LE(farthest, 2 * tolerance * diagonal) << tolerance;
+  }
+}
+
+TEST(SweptEnvelope, AutomaticAdaptiveRatioKeepsTheCoarseCellsWhateverTheTolerance) {
+  EXPECT_EQ(automatic_adaptive_ratio(1e-2), 4);
+  EXPECT_EQ(automatic_adaptive_ratio(1e-3), 4);
+  EXPECT_EQ(automatic_adaptive_ratio(5e-4), 8);
+  EXPECT_EQ(automatic_adaptive_ratio(3e-4), 16);
+  EXPECT_EQ(automatic_adaptive_ratio(1e-4), 32);
+  EXPECT_EQ(automatic_adaptive_ratio(1e-6), 64);
+  // Coarse cells of 3 x tolerance x ratio: between 0.6 % and 1.7 % of the diagonal down to 6e-5.
+  for (double tolerance = 6e-5; tolerance <= 1e-3; tolerance *= 1.1) {
+    const double coarse = 3 * tolerance * automatic_adaptive_ratio(tolerance);
+    EXPECT_GE(coarse, 0.006) << tolerance;
+    EXPECT_LE(coarse, 0.017) << tolerance;
+  }
+  EXPECT_THROW(automatic_adaptive_ratio(0), InvalidInput);
 }
 
 TEST(SweptEnvelope, TranslatedBoxIsTheHullOfItsEndPositions) {
