@@ -140,6 +140,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   if (options.max_cells < 1) throw InvalidInput("expected a positive budget of cells", "max_cells");
   if (options.coarse_ratio < 1 || options.coarse_ratio > 64 || (options.coarse_ratio > 1 && options.coarse_ratio % 2 != 0))
     throw InvalidInput("expected a coarse ratio of 1 or an even number up to 64", "coarse_ratio");
+  if (options.crease_width < 1) throw InvalidInput("expected a crease width of at least 1", "crease_width");
   if (!(options.refinement_tolerance >= 0 && options.refinement_tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_tolerance < 0.5", "refinement_tolerance");
   if (!(options.verification_distance >= 0 && options.verification_distance < 0.5))
@@ -1202,7 +1203,9 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   auto build_complex = [&]() {
     // The cells of each level between coarse and unit where the contour bends: split (their
     // polygons and crossings alone are made to find them).
+    // Not below crease_width: narrower cells only where the verification asks (adaptation).
     for (std::size_t l = 1; l + 1 < levels; ++l) {
+      if (level_size[l + 1] < options.crease_width) break;
       make_complex(level_size[l]);
       for (std::uint64_t cell : bent_cells(level_size[l])) split[l].insert(cell);
     }
@@ -1269,13 +1272,13 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
             for (std::int64_t ii = 0; ii < n; ++ii) todo.emplace_back(offset_key(cell, ii * child, jj * child, k * child), level + 1);
       }
     };
-    // Graded toward the point (decision, 2026-12-07): cells wider than kFullSplitWidth are split
-    // one level, with their 26 neighbours of the same width, and so on into the half holding the
-    // point; from that width down the cell and its 26 neighbours are split to unit cells. With
-    // the default coarse cells (4 units) this is the full split it always was; with the coarse
-    // cells of fine tolerances (32 units at 1e-4) a full split of 27 coarse cells would be
-    // 27 x 32^3 unit cells per point.
-    constexpr std::int64_t kFullSplitWidth = 4;
+    // Graded toward the point (decision, 2026-12-07): with coarse cells wider than 4 units (the
+    // fine tolerances' automatic ratios) a cell is split one level, with its 26 neighbours of
+    // the same width, and so on into the half holding the point, down to unit cells: a full
+    // split of 27 coarse cells would be 27 x 32^3 unit cells per point at ratio 32. With the
+    // default ratio 4 of 1e-3 the cell and its 26 neighbours are split straight to unit cells, as
+    // before (splitting them one level per adaptation needed a second adaptation on Fig. 5).
+    const std::int64_t kFullSplitWidth = ratio > 4 ? 1 : 4;
     for (const auto& [u, leaf] : centres) {
       for (std::size_t l = level_of(leaf); l + 1 < levels; ++l) {
         const std::int64_t s = level_size[l];

@@ -348,6 +348,7 @@ void check_trimming_options(const SweptEnvelopeOptions& options) {
   if (options.adaptive_ratio != 0 && options.adaptive_ratio != SweptEnvelopeOptions::kAutomaticRatio &&
       (options.adaptive_ratio < 2 || options.adaptive_ratio > 64 || options.adaptive_ratio % 2 != 0))
     throw InvalidInput("expected 0 (off), kAutomaticRatio or an even adaptive ratio from 2 to 64", "adaptive_ratio");
+  if (options.crease_width < 0 || options.crease_width > 64) throw InvalidInput("expected 0 (automatic) or a width from 1 to 64", "crease_width");
   if (!(options.refinement_factor >= 0 && options.refinement_factor * options.tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_factor * tolerance < 0.5", "refinement_factor");
 }
@@ -544,6 +545,9 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
     ImageContouringOptions coarse = contouring;
     if (options.coarse_cell_factor > 0) coarse.cell_size = options.coarse_cell_factor * options.tolerance;
     else coarse.coarse_ratio = adaptive_ratio;
+    // Bends split down to cells as wide as the unit cells of 1e-3 (8 units at 1e-4), finer only
+    // where the verification asks (docs/envelopes.md, "Fine tolerances").
+    coarse.crease_width = options.crease_width > 0 ? options.crease_width : std::max(1, automatic_adaptive_ratio(options.tolerance) / 4);
     coarse.refinement_tolerance = options.refinement_factor * options.tolerance;
     coarse.verification_distance = options.tolerance;
     TrimmedBoundary trimmed = contour_image_boundary(superset.mesh, superset.times, inside, coarse, exact, sheet_of_triangle, exact_from);

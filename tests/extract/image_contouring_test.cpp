@@ -155,13 +155,14 @@ TEST(ImageContouring, AdaptiveCellsAreFineOnlyAtTheCreasesAndTheContourStaysClos
   };
   // uniform fine, uniform coarse, adaptive by halves, adaptive straight to unit cells, ratio 8
   // by halves, ratio 6, ratio 16 by halves on unit cells of half the size (five widths, as the
-  // automatic ratio of --tol 3e-4 makes them).
-  constexpr int kCases = 7;
+  // automatic ratio of --tol 3e-4 makes them), ratio 8 with bends split only to width 2.
+  constexpr int kCases = 8;
   std::array<TrimmedBoundary, kCases> b;
   for (int k = 0; k < kCases; ++k) {
     ImageContouringOptions options;
     options.cell_size = k == 1 ? 0.04 : k == 6 ? 0.005 : 0.01;
-    options.coarse_ratio = std::array<int, kCases>{1, 1, 4, 4, 8, 6, 16}[static_cast<std::size_t>(k)];
+    options.coarse_ratio = std::array<int, kCases>{1, 1, 4, 4, 8, 6, 16, 8}[static_cast<std::size_t>(k)];
+    if (k == 7) options.crease_width = 2;
     options.halving_levels = k != 3;
     calls = 0;
     b[static_cast<std::size_t>(k)] = contour_image_boundary(superset, {}, inside, options);
@@ -199,6 +200,16 @@ TEST(ImageContouring, AdaptiveCellsAreFineOnlyAtTheCreasesAndTheContourStaysClos
   // Five widths: the chamfers of unit cells half the size, a quarter of the volume.
   EXPECT_LT(1 - b[6].stats.volume, 12 * 0.5 * std::pow(0.005 * diagonal, 2));
   EXPECT_GT(b[6].stats.grid_cells_refined, 0);
+  // crease_width 2: the same coarse cells split, no unit cells (no verification here to ask for
+  // them), so fewer cells than ratio 8 down to unit cells, and chamfers of width-2 cells.
+  EXPECT_EQ(b[7].stats.grid_cells_refined, b[4].stats.grid_cells_refined);
+  EXPECT_LT(b[7].stats.grid_cells, b[4].stats.grid_cells);
+  EXPECT_LT(1 - b[7].stats.volume, 12 * 0.5 * std::pow(0.02 * diagonal, 2));
+  EXPECT_GT(1 - b[7].stats.volume, 1 - b[4].stats.volume);
+  ImageContouringOptions no_width;
+  no_width.coarse_ratio = 4;
+  no_width.crease_width = 0;
+  EXPECT_THROW(contour_image_boundary(superset, {}, inside, no_width), InvalidInput);
   ImageContouringOptions odd;
   odd.coarse_ratio = 3;
   EXPECT_THROW(contour_image_boundary(superset, {}, inside, odd), InvalidInput);

@@ -196,6 +196,12 @@ TEST(SweptEnvelope, AutomaticAdaptiveRatioKeepsTheCoarseCellsWhateverTheToleranc
     EXPECT_LE(coarse, 0.017) << tolerance;
   }
   EXPECT_THROW(automatic_adaptive_ratio(0), InvalidInput);
+  SweptEnvelopeOptions bad;
+  bad.crease_width = -1;
+  EXPECT_THROW(swept_envelope(swept_patches(translated_box({1, 1, 1}, {1, 0, 0})), bad), InvalidInput);
+  bad = {};
+  bad.adaptive_ratio = 66;
+  EXPECT_THROW(swept_envelope(swept_patches(translated_box({1, 1, 1}, {1, 0, 0})), bad), InvalidInput);
 }
 
 TEST(SweptEnvelope, TranslatedBoxIsTheHullOfItsEndPositions) {

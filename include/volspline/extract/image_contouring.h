@@ -47,7 +47,7 @@ struct ImageContouringOptions {
   double superset_error = 2e-3;
   /// Bisection steps along a grid edge the superset does not cross.
   int bisection_steps = 12;
-  /// Adaptive cells: 1, a uniform grid of `cell_size`; an even number up to 16, cells this many
+  /// Adaptive cells: 1, a uniform grid of `cell_size`; an even number up to 64, cells this many
   /// times wider, split down to cells of `cell_size` where the contour bends by more than
   /// `crease_angle_degrees` or a vertex found no sheet (by halves, see `halving_levels`), with
   /// coned transition cells in between so that the complex stays conforming (docs/envelopes.md,
@@ -58,6 +58,11 @@ struct ImageContouringOptions {
   /// still bends at that width (an octree; ratio 6: straight into unit cells after the coarse
   /// level); false: every split cell straight into ratio^3 unit cells.
   bool halving_levels = true;
+  /// With adaptive cells by halves: the narrowest width (in units of `cell_size`) that cells
+  /// where the contour bends are split to; creases in wider cells are made by crease points on
+  /// both sheets, and only where the verification finds an edge beyond the tolerance are cells
+  /// split further, down to unit cells. 1 (the default): bends are split down to unit cells.
+  int crease_width = 1;
   /// Budget of distinct grid cells (InvalidInput beyond it: choose a larger cell size).
   std::int64_t max_cells = 20000000;
   /// Tetrahedra whose vertices' sheet normals differ by more than this get a crease vertex

@@ -86,6 +86,11 @@ struct SweptEnvelopeOptions {
   /// 1.2 % of the diagonal whatever the tolerance.
   static constexpr int kAutomaticRatio = -1;
   int adaptive_ratio = kAutomaticRatio;
+  /// With adaptive cells: the narrowest width (units of the fine grid) that cells where the
+  /// contour bends are split to before the verification asks for more
+  /// (ImageContouringOptions::crease_width); 0 (the default): automatic_adaptive_ratio / 4, the
+  /// width of the fine grid of 1e-3 (1 at 1e-3 and above, 8 at 1e-4).
+  int crease_width = 0;
   double refinement_factor = 0.25;
   ImageContouringOptions contouring;
   Progress* progress = nullptr;
