@@ -69,6 +69,8 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                      {"grid_cell_size", t.cell_size},
                      {"grid_cells", t.grid_cells},
                      {"grid_cells_refined", t.grid_cells_refined},
+                     {"grid_coarse_ratio", t.coarse_ratio},
+                     {"grid_crease_width", t.crease_width},
                      {"grid_adaptations", t.grid_adaptations},
                      {"grid_corners", t.grid_corners},
                      {"grid_corners_inferred", t.grid_corners_inferred},
@@ -186,12 +188,16 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
                 << (t.self_intersection_free ? ", no self-intersections" : ", self-intersecting");
       if (!t.closed || !t.self_intersection_free) open = true;
       if (t.refinement_edges_beyond_tolerance > 0) beyond_tolerance = true;
-      if (options.coarse_cell_factor > 0 || options.adaptive_ratio > 0) {
+      // Adaptive cells by default (kAutomaticRatio) or as asked; the coarse grid of --coarse-cells.
+      const bool adaptive = options.coarse_cell_factor == 0 && options.adaptive_ratio != 0;
+      if (options.coarse_cell_factor > 0 || adaptive) {
         if (t.grid_passes == 2)
-          std::cout << "; the " << (options.adaptive_ratio > 0 ? "adaptive cells were" : "coarse grid was") << " not kept ("
+          std::cout << "; the " << (adaptive ? "adaptive cells were" : "coarse grid was") << " not kept ("
                     << t.coarse_grid_rejected << ")";
         else
-          std::cout << "; " << (options.adaptive_ratio > 0 ? std::to_string(t.grid_cells_refined) + " coarse cells refined, " : std::string("coarse grid "))
+          std::cout << "; " << (adaptive ? std::to_string(t.grid_cells_refined) + " coarse cells refined (" + std::to_string(t.coarse_ratio) +
+                                               " fine cells wide), "
+                                         : std::string("coarse grid "))
                     << "refined toward the sheets: " << t.refinement_splits << " edges split, "
                     << t.refinement_edges_beyond_tolerance << " of " << t.refinement_edges_verified
                     << " edges it could not refine farther than the tolerance from the boundary";
@@ -244,7 +250,7 @@ void add_sweep_envelope_command(CLI::App& app) {
                   "contour on cells this many times the fine grid (3 x tol; an even number up to 64), split into fine "
                   "cells only where the boundary bends sharply (creases) or the check of the result asks for it, edges refined "
                   "toward the sheets' equations (docs/envelopes.md, \"Adaptive cells\"; default: 4 at --tol 1e-3 and above, "
-                  "4 x the power of two nearest 1e-3 / tol below, 32 at 1e-4; 0: the uniform fine grid)");
+                  "4 x the power of two nearest 1e-3 / tol below, at most 64: 32 at 1e-4; 0: the uniform fine grid)");
   cmd->add_option("--refine", a->refine, "with --coarse-cells or --adaptive-cells: split edges until their midpoints are within this multiple of --tol of the sheet (default 0.25)");
   cmd->add_option("--stats", a->stats, "write statistics as JSON");
   cmd->add_option("--png", a->png, "also render a picture (parts coloured by source)");

@@ -115,6 +115,9 @@ InvalidInput for a frame whose determinant vanishes on [0, 1].)");
         if (!(refine > 0 && refine <= 1)) throw InvalidInput("refine: expected a multiple of the tolerance in (0, 1]");
         if (adaptive_cells && *adaptive_cells != 0 && (*adaptive_cells < 2 || *adaptive_cells > 64 || *adaptive_cells % 2 != 0))
           throw InvalidInput("adaptive_cells: expected None (chosen from the tolerance), 0 (the uniform fine grid) or an even number from 2 to 64");
+        if (adaptive_cells && coarse_cells > 0) throw InvalidInput("give coarse_cells or adaptive_cells, not both");
+        if (adaptive_cells && *adaptive_cells * 3 * tolerance >= 0.25)
+          throw InvalidInput("adaptive_cells: expected adaptive_cells x 3 x tolerance below 0.25");
         options.coarse_cell_factor = coarse_cells;
         options.adaptive_ratio = coarse_cells > 0 ? 0 : adaptive_cells ? *adaptive_cells : SweptEnvelopeOptions::kAutomaticRatio;
         options.refinement_factor = refine;

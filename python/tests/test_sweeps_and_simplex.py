@@ -46,6 +46,10 @@ def test_envelope_of_a_translated_box_is_the_hull(tmp_path, cli):
         volspline.sweep_envelope(solid, coarse_cells=-1)
     with pytest.raises(volspline.InvalidInput, match="adaptive_cells"):
         volspline.sweep_envelope(solid, adaptive_cells=3)
+    with pytest.raises(volspline.InvalidInput, match="adaptive_cells"):
+        volspline.sweep_envelope(solid, adaptive_cells=64, tolerance=2e-3)
+    with pytest.raises(volspline.InvalidInput, match="not both"):
+        volspline.sweep_envelope(solid, adaptive_cells=4, coarse_cells=16)
     uniform = volspline.sweep_envelope(solid, adaptive_cells=0)["stats"]
     assert uniform["closed"] and abs(uniform["volume"] - exact) < 1e-9
     with pytest.raises(volspline.InvalidInput, match="refine"):

@@ -175,6 +175,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     grid.n[du] = ratio * (coarse_n[du] - 1) + 1;
   }
   stats.cell_size = grid.h;
+  stats.coarse_ratio = ratio;
+  stats.crease_width = options.crease_width;
   const double reach = options.superset_error * diagonal;
 
   std::vector<ContourTriangle> triangles;
@@ -1234,7 +1236,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   SelfIntersectionRecord self_intersection_record;
   // The refinement's splits likewise: most edges of a contour made again have the same two ends.
   SheetRefinementMemory refinement_memory;
-  // Splits the cells holding `beyond_points` and their neighbours down to unit cells; false if
+  // Splits the cells holding `beyond_points` and their neighbours down to unit cells (graded
+  // toward the points where coarse cells are wider than 4 units, below); false if
   // all were unit cells already.
   // The cells to split are decided against the cells split before this call, not against the
   // neighbours this call adds: `beyond_points` arrive in the order the parallel verification

@@ -162,11 +162,12 @@ std::vector<PatchFolds> three_face_folds(const std::vector<BSplineHypervolume>& 
   zero.tolerance = std::min(0.05, 10 * options.tolerance);
   // The flatness of J says nothing of how far the map bends across a cell, so the triangles'
   // chords stand off the fold by about the square of the cell's size: the capsule's cylinder
-  // 4.8e-4 of the diagonal at level 3. The contouring assumes the superset within 2 x the
+  // 8.2e-4 of the diagonal at level 3. The contouring assumes the superset within 2 x the
   // tolerance of the sheets (superset_error) and finds no sheet crossing where it is farther,
   // so below 1e-3 the cells go one level finer for every factor 4 (the chords' error falls
   // with the tolerance; docs/envelopes.md, "Fine tolerances").
-  zero.min_level = 3 + (options.tolerance < 1e-3 ? static_cast<int>(std::ceil(0.5 * std::log2(1e-3 / options.tolerance) - 1e-9)) : 0);
+  // At most 12 (tolerances down to about 1e-12; BoundaryOptions allows 20).
+  zero.min_level = std::min(12, 3 + (options.tolerance < 1e-3 ? static_cast<int>(std::ceil(0.5 * std::log2(1e-3 / options.tolerance) - 1e-9)) : 0));
   zero.max_cells = options.max_cells;
   zero.bounds = options.bounds;
   zero.snap = true;
@@ -545,9 +546,10 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
     ImageContouringOptions coarse = contouring;
     if (options.coarse_cell_factor > 0) coarse.cell_size = options.coarse_cell_factor * options.tolerance;
     else coarse.coarse_ratio = adaptive_ratio;
-    // Bends split down to cells as wide as the unit cells of 1e-3 (8 units at 1e-4), finer only
-    // where the verification asks (docs/envelopes.md, "Fine tolerances").
-    coarse.crease_width = options.crease_width > 0 ? options.crease_width : std::max(1, automatic_adaptive_ratio(options.tolerance) / 4);
+    // Bends split down to a quarter of the coarse cells (the unit cells of 1e-3 with the
+    // automatic ratio: 8 units at 1e-4, 1 at 1e-3), finer only where the verification asks
+    // (docs/envelopes.md, "Fine tolerances").
+    coarse.crease_width = options.crease_width > 0 ? options.crease_width : std::max(1, adaptive_ratio / 4);
     coarse.refinement_tolerance = options.refinement_factor * options.tolerance;
     coarse.verification_distance = options.tolerance;
     TrimmedBoundary trimmed = contour_image_boundary(superset.mesh, superset.times, inside, coarse, exact, sheet_of_triangle, exact_from);

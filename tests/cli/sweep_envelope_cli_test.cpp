@@ -104,10 +104,14 @@ TEST_F(SweepEnvelopeCli, AtAFinerToleranceTheCoarseCellsStayAndTheCapsuleIsKept)
                                        " --tol 1e-4 --stats " + path("s.json"),
                                        tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
+  // The default run says how wide its coarse cells were.
+  EXPECT_NE(r.out.find("coarse cells refined (32 fine cells wide)"), std::string::npos) << r.out;
   const TriangleMesh mesh = read_mesh(path("c.ply"));
   EXPECT_TRUE(edge_statistics(mesh).closed_and_oriented());
   std::ifstream in(path("s.json"));
   const auto o = nlohmann::json::parse(in)["objects"][0];
+  EXPECT_EQ(o["trimming"]["grid_coarse_ratio"].get<int>(), 32);
+  EXPECT_EQ(o["trimming"]["grid_crease_width"].get<int>(), 8);
   EXPECT_TRUE(o["self_intersection_free"].get<bool>());
   EXPECT_EQ(o["components"].get<int>(), 1);
   EXPECT_EQ(o["trimming"]["refinement"]["edges_beyond_tolerance"].get<int>(), 0);

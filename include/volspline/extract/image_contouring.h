@@ -58,8 +58,9 @@ struct ImageContouringOptions {
   /// still bends at that width (an octree; ratio 6: straight into unit cells after the coarse
   /// level); false: every split cell straight into ratio^3 unit cells.
   bool halving_levels = true;
-  /// With adaptive cells by halves: the narrowest width (in units of `cell_size`) that cells
-  /// where the contour bends are split to; creases in wider cells are made by crease points on
+  /// With adaptive cells by halves: bends are split level by level only while the halves are at
+  /// least this wide (in units of `cell_size`; the coarse cells' first split into halves is always
+  /// made); creases in wider cells are made by crease points on
   /// both sheets, and only where the verification finds an edge beyond the tolerance are cells
   /// split further, down to unit cells. 1 (the default): bends are split down to unit cells.
   int crease_width = 1;

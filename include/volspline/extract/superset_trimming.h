@@ -65,6 +65,9 @@ struct SupersetTrimmingStats {
   /// Contouring with adaptive cells (ImageContouringOptions::coarse_ratio > 1): coarse cells split
   /// into fine ones (grid_cells counts the complex's cells, coarse and fine).
   std::int64_t grid_cells_refined = 0;
+  /// Contouring: the coarse cells' width in fine cells (1: a uniform grid) and the narrowest
+  /// width bends were split to (ImageContouringOptions::coarse_ratio, crease_width).
+  int coarse_ratio = 1, crease_width = 1;
   /// ... and the times the contour was made again with more cells refined where the verification
   /// found edges farther than the tolerance from the boundary.
   std::int64_t grid_adaptations = 0;

@@ -82,14 +82,15 @@ struct SweptEnvelopeOptions {
   /// sheets as with coarse_cell_factor. Kept when closed, oriented and free of
   /// self-intersections (otherwise the uniform grid of contour_cell_factor is used, unrefined).
   /// Not used when coarse_cell_factor > 0. docs/envelopes.md, "Adaptive cells".
-  /// kAutomaticRatio (the default): automatic_adaptive_ratio(tolerance), coarse cells about
-  /// 1.2 % of the diagonal whatever the tolerance.
+  /// kAutomaticRatio (the default): automatic_adaptive_ratio(tolerance), coarse cells 0.85–1.7 %
+  /// of the diagonal down to tolerance 4.4e-5 (the ratio is at most 64).
   static constexpr int kAutomaticRatio = -1;
   int adaptive_ratio = kAutomaticRatio;
   /// With adaptive cells: the narrowest width (units of the fine grid) that cells where the
   /// contour bends are split to before the verification asks for more
-  /// (ImageContouringOptions::crease_width); 0 (the default): automatic_adaptive_ratio / 4, the
-  /// width of the fine grid of 1e-3 (1 at 1e-3 and above, 8 at 1e-4).
+  /// (ImageContouringOptions::crease_width); 0 (the default): a quarter of the adaptive ratio used,
+  /// at least 1 (with the automatic ratio the width of 1e-3's fine cells: 1 at 1e-3 and above, 8
+  /// at 1e-4).
   int crease_width = 0;
   double refinement_factor = 0.25;
   ImageContouringOptions contouring;
