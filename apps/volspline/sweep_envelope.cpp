@@ -51,6 +51,7 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
       {"rank_cells_kept", s.rank_cells_kept},
       {"rank_part_cells_examined", s.rank_part_cells_examined},
       {"rank_minors_divided_by_faces", s.rank_minors_divided_by_faces},
+      {"rank_lattice_face_triangles", s.rank_lattice_face_triangles},
       {"budget_reached", s.budget_reached},
       {"samples", s.samples},
       {"seconds", {{"faces", s.seconds_faces}, {"folds", s.seconds_folds}, {"rank_deficient", s.seconds_rank_deficient}, {"total", s.seconds_total}}}};

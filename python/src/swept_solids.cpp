@@ -141,6 +141,7 @@ InvalidInput for a frame whose determinant vanishes on [0, 1].)");
         stats["rank_cells_kept"] = s.rank_cells_kept;
         stats["rank_part_cells_examined"] = s.rank_part_cells_examined;
         stats["rank_minors_divided_by_faces"] = s.rank_minors_divided_by_faces;
+        stats["rank_lattice_face_triangles"] = s.rank_lattice_face_triangles;
         stats["budget_reached"] = s.budget_reached;
         stats["seconds"] = s.seconds_total;
         if (!superset) {

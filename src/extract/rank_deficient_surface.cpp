@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -140,6 +141,7 @@ class Subdivision {
   }
 
   const std::vector<Cell>& roots() const { return roots_; }
+  const std::array<double, 4>& margins() const { return margins_; }
   const std::array<int, 4>& counts() const { return counts_; }
 
   // The global parameter of lattice coordinate g (units of 2^-L of a piece) along d: the same
@@ -304,6 +306,9 @@ using SurfaceKey = std::pair<std::uint64_t, std::uint64_t>;
 struct CellSurface {
   std::int64_t tetrahedra = 0;
   std::vector<std::array<SurfaceKey, 3>> triangles;
+  // Triangles of lattice 2-faces on which the four minors vanish at every corner (below): a face
+  // is shared by up to four cells, so these are merged once each.
+  std::vector<std::array<SurfaceKey, 3>> face_triangles;
   std::vector<std::pair<SurfaceKey, Point4>> vertices;
 };
 
@@ -351,15 +356,49 @@ class CellMarcher {
     std::array<Point4, 16> corner{};
     std::array<double, 16> j123{};
     std::array<Lattice, 16> lattice{};
+    std::array<bool, 16> on_set{};
+    const std::array<double, 4>& margins = subdivision_.margins();
     for (int c = 0; c < 16; ++c) {
       for (int d = 0; d < 4; ++d) {
         lattice[static_cast<std::size_t>(c)][static_cast<std::size_t>(d)] = origin[static_cast<std::size_t>(d)] + ((c >> d) & 1);
         corner[static_cast<std::size_t>(c)][static_cast<std::size_t>(d)] =
             subdivision_.parameter(d, lattice[static_cast<std::size_t>(c)][static_cast<std::size_t>(d)]);
       }
-      j123[static_cast<std::size_t>(c)] = sub_jacobians_at(map_, corner[static_cast<std::size_t>(c)])[0];
+      const std::array<double, 4> minors = sub_jacobians_at(map_, corner[static_cast<std::size_t>(c)]);
+      j123[static_cast<std::size_t>(c)] = minors[0];
+      bool zero = true;
+      for (std::size_t k = 0; k < 4; ++k) zero = zero && std::abs(minors[k]) <= margins[k];
+      on_set[static_cast<std::size_t>(c)] = zero;
     }
     CellSurface out;
+    // A rank-deficient set lying in a lattice 2-face (a generator symmetric about a dyadic
+    // parameter: Fig. 7's bulge ridge u = 3/4, v = 1/2 turned about its own axis) vanishes at
+    // the face's corners only to rounding. J123 changes sign across it only to one side and f
+    // is zero on it, so the marching below sees the signs of rounding errors there and leaves
+    // holes (71,565 open edges at 2^-7 on Fig. 7, 890 at 2^-6). Where all four minors vanish
+    // to the certificates' margins at a face's four corners, the face itself is the surface:
+    // two triangles split at the diagonal from the smallest key, so that every cell sharing the
+    // face splits it alike (docs/envelopes.md, "Rank-deficient sets on the lattice").
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b)
+        for (int base = 0; base < 16; ++base) {
+          if (base & ((1 << a) | (1 << b))) continue;
+          const std::array<int, 4> quad{base, base | (1 << a), base | (1 << a) | (1 << b), base | (1 << b)};
+          bool flat = true;
+          for (int c : quad) flat = flat && on_set[static_cast<std::size_t>(c)];
+          if (!flat) continue;
+          std::array<SurfaceKey, 4> key{};
+          for (std::size_t i = 0; i < 4; ++i) {
+            const std::uint64_t k = vertex_key(lattice[static_cast<std::size_t>(quad[i])]) << 4;
+            key[i] = SurfaceKey{k, k};
+            out.vertices.emplace_back(key[i], corner[static_cast<std::size_t>(quad[i])]);
+          }
+          const std::size_t first = static_cast<std::size_t>(
+              std::min_element(key.begin(), key.end(), [](const SurfaceKey& x, const SurfaceKey& y) { return x.first < y.first; }) - key.begin());
+          const SurfaceKey &p = key[first], &q = key[(first + 1) % 4], &r = key[(first + 2) % 4], &t = key[(first + 3) % 4];
+          out.face_triangles.push_back({p, q, r});
+          out.face_triangles.push_back({p, r, t});
+        }
     std::map<std::uint64_t, EdgePoint> points;
     // The edge point between corners a and b (one a subset of the other as bit masks, as on
     // every Kuhn edge), interpolated from the lower corner.
@@ -567,6 +606,7 @@ RankDeficientSurface rank_deficient_surface(const BSplineHypervolume& map, const
   std::unordered_map<SurfaceKey, int, SurfaceKeyHash> welded;
   std::vector<Point4> domain_points;
   std::vector<std::array<int, 3>> triangles;
+  std::set<std::array<int, 3>> lattice_faces;
   for (const CellSurface& s : surfaces) {
     result.stats.tetrahedra += s.tetrahedra;
     for (const auto& [key, x] : s.vertices) {
@@ -578,7 +618,14 @@ RankDeficientSurface rank_deficient_surface(const BSplineHypervolume& map, const
       if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
       triangles.push_back(t);
     }
+    for (const auto& tri : s.face_triangles) {
+      std::array<int, 3> t{welded.at(tri[0]), welded.at(tri[1]), welded.at(tri[2])};
+      std::array<int, 3> sorted = t;
+      std::sort(sorted.begin(), sorted.end());
+      if (lattice_faces.insert(sorted).second) triangles.push_back(t);
+    }
   }
+  result.stats.lattice_face_triangles = static_cast<std::int64_t>(lattice_faces.size());
   result.stats.seconds_marching = seconds_since(marching_start);
 
   const auto mapping_start = Clock::now();

@@ -314,6 +314,7 @@ void patch_superset(const BSplineHypervolume& s, int patch_index, double tol_abs
   stats.rank_cells_kept += r.stats.cells_kept;
   stats.rank_part_cells_examined += r.stats.part_cells_examined;
   stats.rank_minors_divided_by_faces += r.stats.minors_divided_by_faces;
+  stats.rank_lattice_face_triangles += r.stats.lattice_face_triangles;
   if (r.stats.budget_exhausted) stats.budget_reached = true;
   const int rbase = static_cast<int>(out.mesh.num_vertices());
   for (std::size_t v = 0; v < r.mesh.num_vertices(); ++v) {

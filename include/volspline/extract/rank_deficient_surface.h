@@ -91,6 +91,11 @@ struct RankDeficientStats {
   std::int64_t tetrahedra = 0, triangles = 0;
   /// Triangles dropped as lying on a cusp sheet (RankDeficientOptions::cusp_sine).
   std::int64_t triangles_at_cusps = 0;
+  /// Triangles of lattice 2-faces at whose four corners the four minors vanish to rounding: the
+  /// set lies in the lattice there (a generator symmetric about a dyadic parameter), where the
+  /// marching sees only rounding errors' signs (docs/envelopes.md, "Rank-deficient sets on the
+  /// lattice").
+  std::int64_t lattice_face_triangles = 0;
   double seconds_subdivision = 0, seconds_marching = 0, seconds_mapping = 0, seconds_total = 0;
 };
 

@@ -116,6 +116,8 @@ struct SweptEnvelopeStats {
   std::int64_t rank_part_cells_examined = 0;
   /// Minors divided by the factor of a collapsed domain face (RankDeficientStats).
   int rank_minors_divided_by_faces = 0;
+  /// Triangles of the rank-deficient set made from lattice 2-faces (RankDeficientStats).
+  std::int64_t rank_lattice_face_triangles = 0;
   bool budget_reached = false;
   std::array<int, 4> samples{};
   double seconds_faces = 0, seconds_folds = 0, seconds_rank_deficient = 0, seconds_total = 0;
