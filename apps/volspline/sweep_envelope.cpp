@@ -73,6 +73,7 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                      {"grid_coarse_ratio", t.coarse_ratio},
                      {"grid_crease_width", t.crease_width},
                      {"grid_adaptations", t.grid_adaptations},
+                     {"grid_adaptation_refused", t.grid_adaptation_refused},
                      {"grid_corners", t.grid_corners},
                      {"grid_corners_inferred", t.grid_corners_inferred},
                      {"crossings_off_superset", t.crossings_off_superset},
@@ -159,7 +160,7 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   }();
   TriangleMesh mesh;
   nlohmann::json stats = {{"objects", nlohmann::json::array()}};
-  bool open = false, beyond_tolerance = false;
+  bool open = false, beyond_tolerance = false, adaptation_refused = false;
   std::size_t solids = 0;
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
     if (!is_swept_solid(model.objects[i])) continue;
@@ -189,6 +190,7 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
                 << (t.self_intersection_free ? ", no self-intersections" : ", self-intersecting");
       if (!t.closed || !t.self_intersection_free) open = true;
       if (t.refinement_edges_beyond_tolerance > 0) beyond_tolerance = true;
+      if (t.grid_adaptation_refused) adaptation_refused = true;
       // Adaptive cells by default (kAutomaticRatio) or as asked; the coarse grid of --coarse-cells.
       const bool adaptive = options.coarse_cell_factor == 0 && options.adaptive_ratio != 0;
       if (options.coarse_cell_factor > 0 || adaptive) {
@@ -226,6 +228,10 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
     std::cerr << "volspline: warning: the membership tests find some edges that refinement could not check farther than the "
                  "tolerance from the boundary (creases or thin features the coarse cells missed; see above); --adaptive-cells 0 "
                  "contours on the uniform fine grid instead, slower (docs/envelopes.md, \"Adaptive cells\")\n";
+  if (adaptation_refused)
+    std::cerr << "volspline: warning: so many edges lie beyond the tolerance that splitting the cells around them would more than "
+                 "quadruple the grid; they were left as they are (statistics: grid_adaptation_refused; the superset likely misses "
+                 "the boundary there: docs/envelopes.md, \"Adaptive cells\")\n";
 }
 
 }  // namespace

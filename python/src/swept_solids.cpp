@@ -157,6 +157,9 @@ InvalidInput for a frame whose determinant vanishes on [0, 1].)");
           stats["grid_passes"] = t.grid_passes;
           stats["refinement_split_edges"] = t.refinement_splits;
           stats["refinement_unresolved_edges"] = t.refinement_unresolved_edges;
+          stats["refinement_edges_beyond_tolerance"] = t.refinement_edges_beyond_tolerance;
+          stats["grid_adaptations"] = t.grid_adaptations;
+          stats["grid_adaptation_refused"] = t.grid_adaptation_refused;
         }
         py::dict out = mesh_dict(e.mesh);
         out["times"] = py::array_t<double>(static_cast<py::ssize_t>(e.times.size()), e.times.data());

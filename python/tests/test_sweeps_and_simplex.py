@@ -38,6 +38,7 @@ def test_envelope_of_a_translated_box_is_the_hull(tmp_path, cli):
     exact = a * b * c + abs(d[0]) * b * c + abs(d[1]) * a * c + abs(d[2]) * a * b
     assert stats["closed"] and stats["oriented"] and stats["self_intersection_free"]
     assert abs(stats["volume"] - exact) < 1e-9
+    assert stats["grid_adaptation_refused"] is False and stats["refinement_edges_beyond_tolerance"] == 0
     assert len(envelope["times"]) == len(envelope["vertices"])
     assert envelope["times"].min() >= 0 and envelope["times"].max() <= 1
     superset = volspline.sweep_envelope(solid, superset=True)

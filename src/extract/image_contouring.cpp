@@ -141,6 +141,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   if (options.coarse_ratio < 1 || options.coarse_ratio > 64 || (options.coarse_ratio > 1 && options.coarse_ratio % 2 != 0))
     throw InvalidInput("expected a coarse ratio of 1 or an even number up to 64", "coarse_ratio");
   if (options.crease_width < 1) throw InvalidInput("expected a crease width of at least 1", "crease_width");
+  if (!(options.max_adaptation_growth >= 1)) throw InvalidInput("expected an adaptation growth of at least 1", "max_adaptation_growth");
   if (!(options.refinement_tolerance >= 0 && options.refinement_tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_tolerance < 0.5", "refinement_tolerance");
   if (!(options.verification_distance >= 0 && options.verification_distance < 0.5))
@@ -1246,6 +1247,8 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   auto refine_cells_at = [&] {
     std::size_t split_before = 0;
     for (const auto& s : split) split_before += s.size();
+    // Kept to be restored if the adaptation is refused (max_adaptation_growth).
+    const std::vector<std::unordered_set<std::uint64_t>> split_kept = split;
     // The unit cube holding each point and the width of the leaf around it.
     std::vector<std::pair<LatticeIndex, std::int64_t>> centres;
     for (const Eigen::Vector3d& p : beyond_points) {
@@ -1300,6 +1303,14 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     }
     std::size_t split_after = 0;
     for (const auto& s : split) split_after += s.size();
+    // Each new split replaces a leaf by eight.
+    const double leaves = static_cast<double>(stats.grid_cells) + 7.0 * static_cast<double>(split_after - split_before);
+    if (split_after > split_before &&
+        leaves > std::max(options.max_adaptation_growth * static_cast<double>(stats.grid_cells), static_cast<double>(options.max_adaptation_floor))) {
+      for (std::size_t l = 0; l < split.size(); ++l) split[l] = split_kept[l];
+      stats.grid_adaptation_refused = true;
+      return false;
+    }
     return split_after > split_before;
   };
   for (int adaptation = 0;; ++adaptation) {

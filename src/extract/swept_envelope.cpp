@@ -351,6 +351,7 @@ void check_trimming_options(const SweptEnvelopeOptions& options) {
       (options.adaptive_ratio < 2 || options.adaptive_ratio > 64 || options.adaptive_ratio % 2 != 0))
     throw InvalidInput("expected 0 (off), kAutomaticRatio or an even adaptive ratio from 2 to 64", "adaptive_ratio");
   if (options.crease_width < 0 || options.crease_width > 64) throw InvalidInput("expected 0 (automatic) or a width from 1 to 64", "crease_width");
+  if (!(options.max_adaptation_growth >= 1)) throw InvalidInput("expected an adaptation growth of at least 1", "max_adaptation_growth");
   if (!(options.refinement_factor >= 0 && options.refinement_factor * options.tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_factor * tolerance < 0.5", "refinement_factor");
 }
@@ -551,6 +552,8 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
     // automatic ratio: 8 units at 1e-4, 1 at 1e-3), finer only where the verification asks
     // (docs/envelopes.md, "Fine tolerances").
     coarse.crease_width = options.crease_width > 0 ? options.crease_width : std::max(1, adaptive_ratio / 4);
+    coarse.max_adaptation_growth = options.max_adaptation_growth;
+    coarse.max_adaptation_floor = options.max_adaptation_floor;
     coarse.refinement_tolerance = options.refinement_factor * options.tolerance;
     coarse.verification_distance = options.tolerance;
     TrimmedBoundary trimmed = contour_image_boundary(superset.mesh, superset.times, inside, coarse, exact, sheet_of_triangle, exact_from);

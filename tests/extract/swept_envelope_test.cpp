@@ -291,6 +291,31 @@ TEST(SweptEnvelope, OneThreadAndManyGiveTheSameMesh) {
   EXPECT_EQ(one.stats.trimming.grid_cells, many.stats.trimming.grid_cells);
 }
 
+// An adaptation that would grow the grid more than max_adaptation_growth times (past the floor)
+// is not made: the edges beyond the tolerance stay, counted, and the result is the contour before
+// it. Fig. 5 at 3e-3 adapts once (the test above); with growth 1 and no floor it may not.
+TEST(SweptEnvelope, AnAdaptationGrowingTheGridPastItsBoundIsRefusedAndCounted) {
+  const auto patches = swept_patches(tumbling_cylinder());
+  SweptEnvelopeOptions options;
+  options.tolerance = 3e-3;
+  options.max_adaptation_growth = 1;
+  options.max_adaptation_floor = 0;
+  const SweptEnvelope refused = swept_envelope(patches, options);
+  const SupersetTrimmingStats& t = refused.stats.trimming;
+  EXPECT_TRUE(t.grid_adaptation_refused);
+  EXPECT_EQ(t.grid_adaptations, 0);
+  EXPECT_GT(t.refinement_edges_beyond_tolerance, 0);
+  EXPECT_TRUE(t.closed && t.oriented && t.self_intersection_free);
+  options.max_adaptation_growth = 4;
+  options.max_adaptation_floor = 1000000;
+  const SweptEnvelope adapted = swept_envelope(patches, options);
+  EXPECT_FALSE(adapted.stats.trimming.grid_adaptation_refused);
+  EXPECT_GE(adapted.stats.trimming.grid_adaptations, 1);
+  EXPECT_GT(adapted.stats.trimming.grid_cells, t.grid_cells);
+  options.max_adaptation_growth = 0.5;
+  EXPECT_THROW(swept_envelope(patches, options), InvalidInput);
+}
+
 // Coarse cells wider than 4 units: the adaptations are graded toward the points the
 // verification found (refine_cells_at), in whatever order the threads found them; bends are split
 // only to crease_width. The same mesh from one thread and many.

@@ -66,6 +66,14 @@ struct ImageContouringOptions {
   int crease_width = 1;
   /// Budget of distinct grid cells (InvalidInput beyond it: choose a larger cell size).
   std::int64_t max_cells = 20000000;
+  /// With adaptive cells: an adaptation is not made (and SupersetTrimmingStats::
+  /// grid_adaptation_refused is set) if it would make the complex more than this many times
+  /// larger, and more than max_adaptation_floor cells. The verification's adaptations are local
+  /// repairs (a thin fin, a missed crease); edges beyond the tolerance all over the surface
+  /// come from a superset that misses the boundary there, which splitting cannot mend, and were
+  /// once split until 7 GB were used (docs/envelopes.md, "Adaptive cells").
+  double max_adaptation_growth = 4;
+  std::int64_t max_adaptation_floor = 1000000;
   /// Tetrahedra whose vertices' sheet normals differ by more than this get a crease vertex
   /// (only with sheet equations; 0 turns it off).
   double crease_angle_degrees = 30;

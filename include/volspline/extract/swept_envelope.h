@@ -92,6 +92,10 @@ struct SweptEnvelopeOptions {
   /// at least 1 (with the automatic ratio the width of 1e-3's fine cells: 1 at 1e-3 and above, 8
   /// at 1e-4).
   int crease_width = 0;
+  /// With adaptive cells: the bound on an adaptation's growth of the grid
+  /// (ImageContouringOptions::max_adaptation_growth, max_adaptation_floor).
+  double max_adaptation_growth = 4;
+  std::int64_t max_adaptation_floor = 1000000;
   double refinement_factor = 0.25;
   ImageContouringOptions contouring;
   Progress* progress = nullptr;
