@@ -38,7 +38,6 @@ def test_envelope_of_a_translated_box_is_the_hull(tmp_path, cli):
     exact = a * b * c + abs(d[0]) * b * c + abs(d[1]) * a * c + abs(d[2]) * a * b
     assert stats["closed"] and stats["oriented"] and stats["self_intersection_free"]
     assert abs(stats["volume"] - exact) < 1e-9
-    assert stats["grid_adaptation_refused"] is False and stats["refinement_edges_beyond_tolerance"] == 0
     assert len(envelope["times"]) == len(envelope["vertices"])
     assert envelope["times"].min() >= 0 and envelope["times"].max() <= 1
     superset = volspline.sweep_envelope(solid, superset=True)
@@ -67,6 +66,20 @@ def test_envelope_of_a_translated_box_is_the_hull(tmp_path, cli):
 def cube_points():
     corners = np.array([[i, j, k] for k in (0, 1) for j in (0, 1) for i in (0, 1)], dtype=float)
     return np.vstack([corners, [[0.5, 0.5, 0.5]]])
+
+
+def test_capsule_is_contoured_and_reports_its_adaptations():
+    # A ball along a segment: trimmed by contouring (the arrangement is for polyhedral sweeps),
+    # so the contouring's statistics are its own.
+    r, length = 1.0, 3.0
+    solid = volspline.swept_solid(volspline.ball(r), segment([0, 0, 0], [length, 0, 0]))
+    stats = volspline.sweep_envelope(solid, tolerance=2e-3)["stats"]
+    assert stats["trimmed_by"] == "contouring"
+    assert stats["closed"] and stats["oriented"] and stats["self_intersection_free"]
+    exact = np.pi * r * r * length + 4 / 3 * np.pi * r ** 3
+    assert abs(stats["volume"] - exact) < 2e-3 * exact
+    assert stats["grid_adaptation_refused"] is False
+    assert stats["grid_adaptations"] >= 0 and stats["refinement_edges_beyond_tolerance"] >= 0
 
 
 def test_simplex_spline_reproduces_the_identity_and_polynomials(tmp_path, cli):

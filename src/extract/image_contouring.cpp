@@ -142,6 +142,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     throw InvalidInput("expected a coarse ratio of 1 or an even number up to 64", "coarse_ratio");
   if (options.crease_width < 1) throw InvalidInput("expected a crease width of at least 1", "crease_width");
   if (!(options.max_adaptation_growth >= 1)) throw InvalidInput("expected an adaptation growth of at least 1", "max_adaptation_growth");
+  if (options.max_adaptation_floor < 0) throw InvalidInput("expected a floor of 0 cells or more", "max_adaptation_floor");
   if (!(options.refinement_tolerance >= 0 && options.refinement_tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_tolerance < 0.5", "refinement_tolerance");
   if (!(options.verification_distance >= 0 && options.verification_distance < 0.5))
@@ -1239,16 +1240,20 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   SheetRefinementMemory refinement_memory;
   // Splits the cells holding `beyond_points` and their neighbours down to unit cells (graded
   // toward the points where coarse cells are wider than 4 units, below); false if
-  // all were unit cells already.
+  // all were unit cells already, or if the adaptation is refused (max_adaptation_growth: then
+  // nothing is split and `last_refused` is set).
   // The cells to split are decided against the cells split before this call, not against the
   // neighbours this call adds: `beyond_points` arrive in the order the parallel verification
   // found them, and skipping a point whose cell an earlier point's neighbourhood had just split
   // made the complex (and Fig. 5's output) depend on thread timing.
+  bool last_refused = false;
   auto refine_cells_at = [&] {
-    std::size_t split_before = 0;
-    for (const auto& s : split) split_before += s.size();
-    // Kept to be restored if the adaptation is refused (max_adaptation_growth).
-    const std::vector<std::unordered_set<std::uint64_t>> split_kept = split;
+    last_refused = false;
+    // The splits this call adds, taken back if the adaptation is refused.
+    std::vector<std::pair<std::size_t, std::uint64_t>> added;
+    const auto mark = [&](std::size_t level, std::uint64_t cell) {
+      if (split[level].insert(cell).second) added.emplace_back(level, cell);
+    };
     // The unit cube holding each point and the width of the leaf around it.
     std::vector<std::pair<LatticeIndex, std::int64_t>> centres;
     for (const Eigen::Vector3d& p : beyond_points) {
@@ -1264,13 +1269,13 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
     // Splits cell j (level l) and its ancestors; with `to_unit`, its descendants down to unit
     // cells as well.
     const auto split_cell = [&](const LatticeIndex& j, std::size_t l, bool to_unit) {
-      for (std::size_t a = 0; a < l; ++a) split[a].insert(index_key(floor_to(j, level_size[a])));
+      for (std::size_t a = 0; a < l; ++a) mark(a, index_key(floor_to(j, level_size[a])));
       std::vector<std::pair<std::uint64_t, std::size_t>> todo{{index_key(j), l}};
       while (!todo.empty()) {
         const auto [cell, level] = todo.back();
         todo.pop_back();
         if (level + 1 >= levels) continue;
-        split[level].insert(cell);
+        mark(level, cell);
         if (!to_unit) continue;
         const std::int64_t child = level_size[level + 1], n = level_size[level] / child;
         for (std::int64_t k = 0; k < n; ++k)
@@ -1301,17 +1306,17 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
         if (to_unit) break;
       }
     }
-    std::size_t split_after = 0;
-    for (const auto& s : split) split_after += s.size();
     // Each new split replaces a leaf by eight.
-    const double leaves = static_cast<double>(stats.grid_cells) + 7.0 * static_cast<double>(split_after - split_before);
-    if (split_after > split_before &&
+    const double leaves = static_cast<double>(stats.grid_cells) + 7.0 * static_cast<double>(added.size());
+    if (!added.empty() &&
         leaves > std::max(options.max_adaptation_growth * static_cast<double>(stats.grid_cells), static_cast<double>(options.max_adaptation_floor))) {
-      for (std::size_t l = 0; l < split.size(); ++l) split[l] = split_kept[l];
+      for (const auto& [level, cell] : added) split[level].erase(cell);
       stats.grid_adaptation_refused = true;
+      last_refused = true;
       return false;
     }
-    return split_after > split_before;
+    if (!added.empty()) stats.grid_adaptation_refused = false;
+    return !added.empty();
   };
   for (int adaptation = 0;; ++adaptation) {
   if (ratio > 1) {
@@ -1995,7 +2000,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   }
   stats.seconds_checks = seconds_since(checks_start);
   checks_total += stats.seconds_checks;
-  if (!adapted && (adaptation >= max_adaptations || beyond_points.empty() || !refine_cells_at())) break;
+  if (!adapted && (adaptation >= max_adaptations || beyond_points.empty() || last_refused || !refine_cells_at())) break;
   ++stats.grid_adaptations;
   }
   stats.seconds_checks = checks_total;

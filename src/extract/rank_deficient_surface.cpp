@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -350,7 +351,11 @@ double image_plane_sine(const double* derivatives) {
 class CellMarcher {
  public:
   CellMarcher(const BSplineHypervolume& map, const Subdivision& subdivision, const std::array<int, 16>& slot)
-      : map_(map), subdivision_(subdivision), slot_(slot) {}
+      : map_(map), subdivision_(subdivision), slot_(slot) {
+    // The margins are in units of the Bernstein minors, which for a rational map are those of
+    // w^4 J (the homogeneous determinants): the weight's own spline scales a corner's minors.
+    if (map.is_rational()) weight_.emplace(map.knot_vectors(), 1, map.weights());
+  }
 
   CellSurface march(const Lattice& origin) const {
     std::array<Point4, 16> corner{};
@@ -366,8 +371,10 @@ class CellMarcher {
       }
       const std::array<double, 4> minors = sub_jacobians_at(map_, corner[static_cast<std::size_t>(c)]);
       j123[static_cast<std::size_t>(c)] = minors[0];
+      const double w = weight_ ? weight_->evaluate(corner[static_cast<std::size_t>(c)])[0] : 1.0;
+      const double scale = w * w * w * w;
       bool zero = true;
-      for (std::size_t k = 0; k < 4; ++k) zero = zero && std::abs(minors[k]) <= margins[k];
+      for (std::size_t k = 0; k < 4; ++k) zero = zero && std::abs(minors[k]) * scale <= margins[k];
       on_set[static_cast<std::size_t>(c)] = zero;
     }
     CellSurface out;
@@ -375,10 +382,16 @@ class CellMarcher {
     // parameter: Fig. 7's bulge ridge u = 3/4, v = 1/2 turned about its own axis) vanishes at
     // the face's corners only to rounding. J123 changes sign across it only to one side and f
     // is zero on it, so the marching below sees the signs of rounding errors there and leaves
-    // holes (71,565 open edges at 2^-7 on Fig. 7, 890 at 2^-6). Where all four minors vanish
-    // to the certificates' margins at a face's four corners, the face itself is the surface:
-    // two triangles split at the diagonal from the smallest key, so that every cell sharing the
-    // face splits it alike (docs/envelopes.md, "Rank-deficient sets on the lattice").
+    // holes (84 % of Fig. 7's ridge covered at 2^-7). Where all four minors vanish to the
+    // certificates' margins at a face's four corners, the face itself is the surface: two
+    // triangles split at the diagonal from the smallest key, so that every cell sharing the face
+    // splits it alike; the marching's triangles lying in such a face (slivers made of rounding
+    // signs) are dropped (docs/envelopes.md, "Rank-deficient sets on the lattice").
+    struct FlatFace {
+      int a = 0, b = 0;
+      Point4 low{}, high{};
+    };
+    std::vector<FlatFace> flat_faces;
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b)
         for (int base = 0; base < 16; ++base) {
@@ -398,6 +411,7 @@ class CellMarcher {
           const SurfaceKey &p = key[first], &q = key[(first + 1) % 4], &r = key[(first + 2) % 4], &t = key[(first + 3) % 4];
           out.face_triangles.push_back({p, q, r});
           out.face_triangles.push_back({p, r, t});
+          flat_faces.push_back({a, b, corner[static_cast<std::size_t>(quad[0])], corner[static_cast<std::size_t>(quad[2])]});
         }
     std::map<std::uint64_t, EdgePoint> points;
     // The edge point between corners a and b (one a subset of the other as bit masks, as on
@@ -451,6 +465,27 @@ class CellMarcher {
         add_prism(bottom, top, out);
       }
     } while (std::next_permutation(axes.begin(), axes.end()));
+    if (!flat_faces.empty()) {
+      // Interpolation between points with equal coordinates keeps them exactly, so a vertex in
+      // a face has the face's two fixed coordinates to the bit.
+      std::map<SurfaceKey, Point4> at(out.vertices.begin(), out.vertices.end());
+      const auto in_face = [&](const FlatFace& f, const Point4& x) {
+        for (int d = 0; d < 4; ++d) {
+          const auto i = static_cast<std::size_t>(d);
+          if (d == f.a || d == f.b) {
+            if (x[i] < f.low[i] || x[i] > f.high[i]) return false;
+          } else if (x[i] != f.low[i]) {
+            return false;
+          }
+        }
+        return true;
+      };
+      std::erase_if(out.triangles, [&](const std::array<SurfaceKey, 3>& t) {
+        return std::any_of(flat_faces.begin(), flat_faces.end(), [&](const FlatFace& f) {
+          return in_face(f, at.at(t[0])) && in_face(f, at.at(t[1])) && in_face(f, at.at(t[2]));
+        });
+      });
+    }
     return out;
   }
 
@@ -529,6 +564,7 @@ class CellMarcher {
   const BSplineHypervolume& map_;
   const Subdivision& subdivision_;
   const std::array<int, 16>& slot_;
+  std::optional<BSplineHypervolume> weight_;
 };
 
 struct SurfaceKeyHash {

@@ -352,6 +352,7 @@ void check_trimming_options(const SweptEnvelopeOptions& options) {
     throw InvalidInput("expected 0 (off), kAutomaticRatio or an even adaptive ratio from 2 to 64", "adaptive_ratio");
   if (options.crease_width < 0 || options.crease_width > 64) throw InvalidInput("expected 0 (automatic) or a width from 1 to 64", "crease_width");
   if (!(options.max_adaptation_growth >= 1)) throw InvalidInput("expected an adaptation growth of at least 1", "max_adaptation_growth");
+  if (options.max_adaptation_floor < 0) throw InvalidInput("expected a floor of 0 cells or more", "max_adaptation_floor");
   if (!(options.refinement_factor >= 0 && options.refinement_factor * options.tolerance < 0.5))
     throw InvalidInput("expected 0 <= refinement_factor * tolerance < 0.5", "refinement_factor");
 }

@@ -15,8 +15,8 @@
 
 #include "support/translated_generators.h"
 #include "volspline/analysis/sub_jacobians.h"
-#include "volspline/io/model_file.h"
 #include "volspline/construct/swept_solid.h"
+#include "volspline/io/model_file.h"
 #include "volspline/core/bernstein_tensor.h"
 #include "volspline/core/error.h"
 #include "volspline/core/progress.h"
@@ -421,6 +421,21 @@ TEST(RankDeficientSurface, ASetLyingInALatticeFaceIsCoveredWithoutHoles) {
   options.tolerance = 1.0 / 128;
   const auto s = rank_deficient_surface(map, options);
   EXPECT_GT(s.stats.lattice_face_triangles, 0);
+  // The marching's slivers in the ridge face (three corners along one t line, made of rounding
+  // signs) are gone: every triangle in the face spans it in w and t.
+  for (const auto& tri : s.mesh.triangles) {
+    std::set<double> w, t;
+    bool in_ridge = true;
+    for (int v : tri) {
+      const auto i = static_cast<std::size_t>(v);
+      in_ridge = in_ridge && s.mesh.parameters[i].x() == 0.75 && s.mesh.parameters[i].y() == 0.5;
+      w.insert(s.mesh.parameters[i].z());
+      t.insert(s.t[i]);
+    }
+    if (in_ridge) {
+      EXPECT_TRUE(w.size() == 2 && t.size() == 2);
+    }
+  }
   // Each point of the ridge's image (a cylinder about the z axis) must lie on the surface: the
   // radial segment through it, 0.02 to each side, meets a triangle (as a grid edge of the
   // contouring must). Triangles are bucketed by height.
@@ -462,6 +477,16 @@ TEST(RankDeficientSurface, ASetLyingInALatticeFaceIsCoveredWithoutHoles) {
   // The premise: the set is the ridge face (the minors vanish on it to rounding).
   EXPECT_LT(worst, 1e-12);
   EXPECT_EQ(missed, 0) << "of " << samples << " points of the ridge's image";
+  // The corners' test is on w^4 J, the units of the certificates' margins: scaling every weight
+  // (which leaves the map as it is) finds the same faces. At 2^-6, to keep the test short.
+  options.tolerance = 1.0 / 64;
+  std::vector<double> heavier = map.weights();
+  ASSERT_FALSE(heavier.empty());
+  for (double& w : heavier) w *= 256;
+  const BSplineHypervolume scaled(map.knot_vectors(), 3, map.points(), heavier);
+  const auto plain = rank_deficient_surface(map, options), heavy = rank_deficient_surface(scaled, options);
+  EXPECT_GT(plain.stats.lattice_face_triangles, 0);
+  EXPECT_EQ(heavy.stats.lattice_face_triangles, plain.stats.lattice_face_triangles);
 }
 
 }  // namespace

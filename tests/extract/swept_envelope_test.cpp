@@ -312,7 +312,17 @@ TEST(SweptEnvelope, AnAdaptationGrowingTheGridPastItsBoundIsRefusedAndCounted) {
   EXPECT_FALSE(adapted.stats.trimming.grid_adaptation_refused);
   EXPECT_GE(adapted.stats.trimming.grid_adaptations, 1);
   EXPECT_GT(adapted.stats.trimming.grid_cells, t.grid_cells);
+  EXPECT_LE(adapted.stats.trimming.grid_cells, 4 * t.grid_cells);
+  // Growth 1 but a floor above the grid: made.
+  options.max_adaptation_growth = 1;
+  options.max_adaptation_floor = 1000000000;
+  const SweptEnvelope floored = swept_envelope(patches, options);
+  EXPECT_FALSE(floored.stats.trimming.grid_adaptation_refused);
+  EXPECT_EQ(floored.stats.trimming.grid_cells, adapted.stats.trimming.grid_cells);
   options.max_adaptation_growth = 0.5;
+  EXPECT_THROW(swept_envelope(patches, options), InvalidInput);
+  options.max_adaptation_growth = 4;
+  options.max_adaptation_floor = -1;
   EXPECT_THROW(swept_envelope(patches, options), InvalidInput);
 }
 

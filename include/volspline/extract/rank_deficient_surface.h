@@ -35,7 +35,9 @@
 // image plane at their vertices (RankDeficientOptions::cusp_sine). f is
 // evaluated exactly (second derivatives of s) at every edge point, never interpolated from the
 // grid. Surface vertices are welded by the pair of edge-point keys of their tetrahedron edge, so
-// the output is a conforming mesh.
+// the output is a conforming mesh, except where the set lies in a lattice 2-face: there the face
+// itself is the surface (RankDeficientStats::lattice_face_triangles), and the marching's
+// triangles next to it may meet it at T-junctions (a superset needs no more).
 #include <cstdint>
 #include <vector>
 
@@ -94,7 +96,7 @@ struct RankDeficientStats {
   /// Triangles of lattice 2-faces at whose four corners the four minors vanish to rounding: the
   /// set lies in the lattice there (a generator symmetric about a dyadic parameter), where the
   /// marching sees only rounding errors' signs (docs/envelopes.md, "Rank-deficient sets on the
-  /// lattice").
+  /// lattice"). Counted before the cusp filter.
   std::int64_t lattice_face_triangles = 0;
   double seconds_subdivision = 0, seconds_marching = 0, seconds_mapping = 0, seconds_total = 0;
 };

@@ -71,8 +71,9 @@ struct SupersetTrimmingStats {
   /// ... and the times the contour was made again with more cells refined where the verification
   /// found edges farther than the tolerance from the boundary.
   std::int64_t grid_adaptations = 0;
-  /// ... and whether an adaptation was refused as growing the complex beyond
-  /// ImageContouringOptions::max_adaptation_growth (the edges beyond the tolerance stay, counted).
+  /// ... and whether the last adaptation asked for was refused as growing the complex more than
+  /// ImageContouringOptions::max_adaptation_growth times past max_adaptation_floor cells (the
+  /// edges beyond the tolerance stay, counted).
   bool grid_adaptation_refused = false;
   /// Contouring with refinement toward the sheets (extract/sheet_refinement.h): the tolerance
   /// (absolute), rounds, edges split, edges whose sheet point was not found, edges left above

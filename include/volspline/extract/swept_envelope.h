@@ -93,7 +93,8 @@ struct SweptEnvelopeOptions {
   /// at 1e-4).
   int crease_width = 0;
   /// With adaptive cells: the bound on an adaptation's growth of the grid
-  /// (ImageContouringOptions::max_adaptation_growth, max_adaptation_floor).
+  /// (ImageContouringOptions::max_adaptation_growth, max_adaptation_floor; these override the
+  /// same fields of `contouring` in the adaptive pass).
   double max_adaptation_growth = 4;
   std::int64_t max_adaptation_floor = 1000000;
   double refinement_factor = 0.25;
