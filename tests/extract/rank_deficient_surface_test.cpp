@@ -11,6 +11,7 @@
 #include <tuple>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <tbb/global_control.h>
 
 #include "support/translated_generators.h"

@@ -8,6 +8,7 @@
 #include "volspline/construct/primitives.h"
 #include "volspline/construct/swept_examples.h"
 #include "volspline/construct/swept_solid.h"
+#include "volspline/core/error.h"
 #include "volspline/mesh/mesh_checks.h"
 
 namespace volspline {
