@@ -68,9 +68,10 @@ std::vector<int> parse_integers(const std::string& text, std::size_t count, int 
 }
 
 void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, MeshFormat format, bool ascii,
-                            const std::string& png, const RenderOptions& options, const TriangleMesh* shown) {
+                            const std::string& png, const RenderOptions& options, const TriangleMesh* shown,
+                            const std::vector<PlyVertexProperty>& properties) {
   AtomicFile mesh_file(out);
-  mesh_file.stream() << mesh_bytes(mesh, format, {.ascii = ascii});
+  mesh_file.stream() << mesh_bytes(mesh, format, {.ascii = ascii, .vertex_properties = properties});
   std::optional<AtomicFile> png_file;
   if (!png.empty()) {
     const std::string bytes = png_bytes(render_mesh(shown != nullptr ? *shown : mesh, options));
@@ -83,7 +84,7 @@ void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, Me
 
 void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& out, MeshFormat format, const std::string& png,
                                   const RenderOptions& options, const std::string& stats_text, const std::string& stats_path,
-                                  Progress* progress, const TriangleMesh* shown) {
+                                  Progress* progress, const TriangleMesh* shown, const std::vector<PlyVertexProperty>& properties) {
   std::optional<AtomicFile> stats_file;
   if (!stats_path.empty()) {
     stats_file.emplace(stats_path, false);
@@ -91,7 +92,7 @@ void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& o
   }
   {
     const ProgressPhase phase(progress, "writing");
-    write_mesh_and_picture(mesh, out, format, false, png, options, shown);
+    write_mesh_and_picture(mesh, out, format, false, png, options, shown, properties);
     if (stats_file) stats_file->commit();
   }
   std::cout << "wrote " << out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_triangles() << " triangles\n";

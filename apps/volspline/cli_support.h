@@ -44,14 +44,17 @@ std::shared_ptr<ModelInput> add_model_input(CLI::App* cmd);
 int parameter_count(const ModelObject& object);
 /// Writes `mesh` to `out` and, unless `png` is empty, its picture (of `shown` where not null, e.g.
 /// the mesh cut open) to `png`. Both files are prepared and opened before either is committed, so
-/// a failure on one leaves neither behind.
+/// a failure on one leaves neither behind. `properties`: further PLY vertex properties (ignored
+/// by the other formats).
 void write_mesh_and_picture(const TriangleMesh& mesh, const std::string& out, MeshFormat format, bool ascii,
-                            const std::string& png, const RenderOptions& options, const TriangleMesh* shown = nullptr);
+                            const std::string& png, const RenderOptions& options, const TriangleMesh* shown = nullptr,
+                            const std::vector<PlyVertexProperty>& properties = {});
 /// Writes `stats_text` to `stats_path` (unless empty), `mesh` and its picture as
 /// write_mesh_and_picture, all prepared before any is committed, and prints what it wrote.
 void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& out, MeshFormat format, const std::string& png,
                                   const RenderOptions& options, const std::string& stats_text, const std::string& stats_path,
-                                  Progress* progress, const TriangleMesh* shown = nullptr);
+                                  Progress* progress, const TriangleMesh* shown = nullptr,
+                                  const std::vector<PlyVertexProperty>& properties = {});
 /// JSON text for output (stdout, --stats): strings that are not valid UTF-8 (an object name read
 /// from an IRIT file) have their invalid bytes replaced by U+FFFD instead of failing.
 std::string json_text(const nlohmann::json& value, int indent = 2);

@@ -18,6 +18,7 @@
 #include "volspline/io/model_volumes.h"
 #include "volspline/mesh/mesh_clipping.h"
 #include "volspline/mesh/mesh_writer.h"
+#include "volspline/mesh/parts.h"
 #include "volspline/pipeline/interactive_model_page.h"
 
 namespace volspline::cli {
@@ -66,6 +67,9 @@ nlohmann::json envelope_stats(const SweptEnvelopeStats& s, bool trimmed) {
                      {"pieces_undecided", t.pieces_undecided},
                      {"membership_queries", t.membership_queries},
                      {"membership_queries_remembered", t.membership_queries_remembered},
+                     {"tags_corrected", t.tags_corrected},
+                     {"tags_beyond_tolerance", t.tags_beyond_tolerance},
+                     {"largest_tag_distance", t.largest_tag_distance},
                      {"method", s.trimmed_by == EnvelopeTrimming::Arrangement ? "arrangement" : "contouring"},
                      {"grid_cell_size", t.cell_size},
                      {"grid_cells", t.grid_cells},
@@ -159,8 +163,10 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
     return a.input->read();
   }();
   TriangleMesh mesh;
+  // Per vertex: t and the generator patch (SweptEnvelope::times, patches), after u, v, w in PLY.
+  PlyVertexProperty times{"t", {}, false}, patches{"patch", {}, true};
   nlohmann::json stats = {{"objects", nlohmann::json::array()}};
-  bool open = false, beyond_tolerance = false, adaptation_refused = false;
+  bool open = false, beyond_tolerance = false, adaptation_refused = false, tags_off = false;
   std::size_t solids = 0;
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
     if (!is_swept_solid(model.objects[i])) continue;
@@ -174,8 +180,20 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
       }
     }();
     mesh.append(e.mesh);
+    times.values.insert(times.values.end(), e.times.begin(), e.times.end());
+    patches.values.insert(patches.values.end(), e.patches.begin(), e.patches.end());
     nlohmann::json s = envelope_stats(e.stats, options.trim);
     s["object"] = i;
+    if (options.trim) {
+      std::int64_t caps = 0, faces = 0, rank = 0;
+      for (const int part : e.mesh.parts) {
+        caps += part == static_cast<int>(Part::SweepCap);
+        faces += part == static_cast<int>(Part::SweepFace);
+        rank += part == static_cast<int>(Part::SweepRankDeficient);
+      }
+      s["result_triangles"] = {{"caps", caps}, {"face_sweeps", faces}, {"rank_deficient", rank}, {"total", e.mesh.num_triangles()}};
+      if (e.stats.trimming.tags_beyond_tolerance > 0) tags_off = true;
+    }
     stats["objects"].push_back(s);
     const auto& t = e.stats.trimming;
     std::cout << "object " << i << ": " << e.mesh.num_triangles() << " triangles";
@@ -214,7 +232,8 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   // A cut-open picture: the part where normal·x > offset is left out of the picture only
   // (Conkey–Joy's superset shows its sheets inside the swept volume, the trimmed result is a shell).
   const std::optional<TriangleMesh> shown = cut ? std::optional(remove_convex_region(mesh, {*cut})) : std::nullopt;
-  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, stats.dump(2), a.stats, options.progress, shown ? &*shown : nullptr);
+  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, stats.dump(2), a.stats, options.progress, shown ? &*shown : nullptr,
+                               {times, patches});
   InteractivePage page;
   page.title = "envelope of " + a.input->path;
   page.mesh = mesh;
@@ -228,6 +247,9 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
     std::cerr << "volspline: warning: the membership tests find some edges that refinement could not check farther than the "
                  "tolerance from the boundary (creases or thin features the coarse cells missed; see above); --adaptive-cells 0 "
                  "contours on the uniform fine grid instead, slower (docs/envelopes.md, \"Adaptive cells\")\n";
+  if (tags_off)
+    std::cerr << "volspline: warning: some vertices' (u, v, w, t) could not be made to map within the tolerance of them "
+                 "(statistics: tags_beyond_tolerance, largest_tag_distance)\n";
   if (adaptation_refused)
     std::cerr << "volspline: warning: so many edges lie beyond the tolerance that splitting the cells around them would more than "
                  "quadruple the grid; they were left as they are (statistics: grid_adaptation_refused; the superset likely misses "
@@ -242,7 +264,7 @@ void add_sweep_envelope_command(CLI::App& app) {
                                  "caps (part 13), face and edge sweeps (part 14), the rank-deficient set (part 15)");
   auto a = std::make_shared<SweepEnvelopeArguments>();
   a->input = add_model_input(cmd);
-  cmd->add_option("-o,--output", a->out, "mesh file: .ply (x y z u v w, face part), .obj, .stl or .glb")->required();
+  cmd->add_option("-o,--output", a->out, "mesh file: .ply (x y z u v w t patch per vertex, part per face), .obj, .stl or .glb")->required();
   cmd->add_option("--tol", a->tol, "tolerance relative to the bounding-box diagonal (default 1e-3)");
   cmd->add_option("--max-cells", a->max_cells, "budget of cells per subdivision (default 2000000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
   cmd->add_option("--bounds", a->bounds, "bezier (certified Bernstein coefficients, default) or cone (the paper's cone bounds)");

@@ -160,6 +160,9 @@ InvalidInput for a frame whose determinant vanishes on [0, 1].)");
           stats["refinement_edges_beyond_tolerance"] = t.refinement_edges_beyond_tolerance;
           stats["grid_adaptations"] = t.grid_adaptations;
           stats["grid_adaptation_refused"] = t.grid_adaptation_refused;
+          stats["tags_corrected"] = t.tags_corrected;
+          stats["tags_beyond_tolerance"] = t.tags_beyond_tolerance;
+          stats["largest_tag_distance"] = t.largest_tag_distance;
         }
         py::dict out = mesh_dict(e.mesh);
         out["times"] = py::array_t<double>(static_cast<py::ssize_t>(e.times.size()), e.times.data());

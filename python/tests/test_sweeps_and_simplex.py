@@ -73,8 +73,17 @@ def test_capsule_is_contoured_and_reports_its_adaptations():
     # so the contouring's statistics are its own.
     r, length = 1.0, 3.0
     solid = volspline.swept_solid(volspline.ball(r), segment([0, 0, 0], [length, 0, 0]))
-    stats = volspline.sweep_envelope(solid, tolerance=2e-3)["stats"]
+    result = volspline.sweep_envelope(solid, tolerance=2e-3)
+    stats = result["stats"]
     assert stats["trimmed_by"] == "contouring"
+    # Every vertex's (u, v, w, t) maps onto it: here a point of the capsule's surface, at
+    # distance r from the segment, within the tolerance (of the control points' diagonal).
+    params = np.column_stack([result["parameters"], result["times"]])
+    patches = solid.patches() if callable(getattr(solid, "patches", None)) else solid.patches
+    assert stats["tags_beyond_tolerance"] == 0
+    images = np.array([np.asarray(patches[p].evaluate(q)).ravel()[:3] for p, q in zip(result["patches"][::7], params[::7])])
+    assert np.linalg.norm(images - result["vertices"][::7], axis=1).max() <= stats["largest_tag_distance"] + 1e-12
+    assert stats["largest_tag_distance"] < 2e-3 * 8
     assert stats["closed"] and stats["oriented"] and stats["self_intersection_free"]
     exact = np.pi * r * r * length + 4 / 3 * np.pi * r ** 3
     assert abs(stats["volume"] - exact) < 2e-3 * exact

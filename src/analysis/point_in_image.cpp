@@ -350,6 +350,19 @@ typename SplineImage<D>::Query SplineImage<D>::query(const Eigen::Vector3d& x, c
 }
 
 template <int D>
+std::optional<typename SplineImage<D>::Preimage> SplineImage<D>::preimage_near(const Eigen::Vector3d& x, const Preimage& start,
+                                                                                double distance) const {
+  if (!x.allFinite()) throw InvalidInput("the point must be finite", "x");
+  if (start.patch >= patches_.size())
+    throw InvalidInput("patch " + std::to_string(start.patch) + " does not exist (" + std::to_string(patches_.size()) + " patches)", "start");
+  if (!(distance > 0)) throw InvalidInput("the distance must be positive", "distance");
+  // Towards the closest point (a tight tolerance), accepted anywhere within `distance`.
+  const detail::DomainNewtonResult<D> newton = detail::newton_in_domain<D>(patches_[start.patch], x, start.parameter, 1e-6 * distance);
+  if (!(newton.residual <= distance)) return std::nullopt;
+  return Preimage{start.patch, newton.parameter};
+}
+
+template <int D>
 ImageMembership SplineImage<D>::classify(const Eigen::Vector3d& x) const {
   return query(x).membership;
 }

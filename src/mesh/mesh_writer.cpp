@@ -105,14 +105,27 @@ bool is_ply_property_name(const std::string& name) {
 
 std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<double>& scalars,
                       const std::string& scalar_name) {
+  std::vector<PlyVertexProperty> properties;
+  if (!scalars.empty()) properties.push_back({scalar_name, scalars, false});
+  return ply_bytes(mesh, ascii, properties);
+}
+
+std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<PlyVertexProperty>& properties) {
   validate_mesh(mesh);
-  const bool with_scalar = !scalars.empty();
-  if (with_scalar) {
-    if (scalars.size() != mesh.num_vertices())
-      throw InvalidInput("a PLY scalar needs one value per vertex: " + std::to_string(mesh.num_vertices()) + " vertices, " +
-                         std::to_string(scalars.size()) + " values");
-    if (!is_ply_property_name(scalar_name)) throw InvalidInput("a PLY property name must be letters, digits, '_', '-' or '.', got '" + scalar_name + "'");
+  std::vector<std::string> names{"x", "y", "z", "u", "v", "w"};
+  for (const PlyVertexProperty& p : properties) {
+    if (p.values.size() != mesh.num_vertices())
+      throw InvalidInput("the PLY property '" + p.name + "' needs one value per vertex: " + std::to_string(mesh.num_vertices()) +
+                         " vertices, " + std::to_string(p.values.size()) + " values");
+    if (!is_ply_property_name(p.name)) throw InvalidInput("a PLY property name must be letters, digits, '_', '-' or '.', got '" + p.name + "'");
+    if (std::find(names.begin(), names.end(), p.name) != names.end()) throw InvalidInput("two PLY vertex properties are named '" + p.name + "'");
+    names.push_back(p.name);
+    if (p.integer)
+      for (double value : p.values)
+        if (!(std::abs(value) < 2147483647.0))
+          throw InvalidInput("the PLY property '" + p.name + "' is an int; got " + std::to_string(value));
   }
+  auto as_int = [](double value) { return static_cast<std::int32_t>(std::lround(value)); };
   std::string out;
   out += "ply\n";
   out += ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n";
@@ -124,7 +137,7 @@ std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<do
     out += name;
     out += '\n';
   }
-  if (with_scalar) out += "property double " + scalar_name + "\n";
+  for (const PlyVertexProperty& p : properties) out += std::string("property ") + (p.integer ? "int " : "double ") + p.name + "\n";
   out += "element face " + std::to_string(mesh.num_triangles()) + "\n";
   out += "property list uchar int vertex_indices\n";
   out += "property int part\n";
@@ -135,9 +148,10 @@ std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<do
       append_numbers(out, mesh.positions[v]);
       out += ' ';
       append_numbers(out, mesh.parameters[v]);
-      if (with_scalar) {
+      for (const PlyVertexProperty& p : properties) {
         out += ' ';
-        append_number(out, scalars[v]);
+        if (p.integer) append_number(out, static_cast<long long>(as_int(p.values[v])));
+        else append_number(out, p.values[v]);
       }
       out += '\n';
     }
@@ -154,11 +168,14 @@ std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<do
     return out;
   }
 
-  out.reserve(out.size() + 48 * mesh.num_vertices() + 17 * mesh.num_triangles());
+  out.reserve(out.size() + (48 + 8 * properties.size()) * mesh.num_vertices() + 17 * mesh.num_triangles());
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     for (int i = 0; i < 3; ++i) append_little_endian(out, mesh.positions[v][i]);
     for (int i = 0; i < 3; ++i) append_little_endian(out, mesh.parameters[v][i]);
-    if (with_scalar) append_little_endian(out, scalars[v]);
+    for (const PlyVertexProperty& p : properties) {
+      if (p.integer) append_little_endian(out, as_int(p.values[v]));
+      else append_little_endian(out, p.values[v]);
+    }
   }
   for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
     append_little_endian(out, std::uint8_t{3});
@@ -406,7 +423,12 @@ std::string mesh_bytes(const TriangleMesh& mesh, MeshFormat format,
                        const MeshWriteOptions& options) {
   switch (format) {
     case MeshFormat::Ply:
-      return ply_bytes(mesh, options.ascii, options.vertex_scalars, options.scalar_name);
+    {
+      std::vector<PlyVertexProperty> properties;
+      if (!options.vertex_scalars.empty()) properties.push_back({options.scalar_name, options.vertex_scalars, false});
+      properties.insert(properties.end(), options.vertex_properties.begin(), options.vertex_properties.end());
+      return ply_bytes(mesh, options.ascii, properties);
+    }
     case MeshFormat::Obj:
       return obj_bytes(mesh);
     case MeshFormat::Stl:

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <numbers>
 #include <string>
@@ -13,6 +14,8 @@
 
 #include "support/cli_runner.h"
 #include "support/temporary_directory.h"
+#include "volspline/construct/swept_solid.h"
+#include "volspline/io/model_file.h"
 #include "volspline/mesh/mesh_checks.h"
 #include "volspline/mesh/mesh_reader.h"
 
@@ -39,6 +42,32 @@ TEST_F(SweepEnvelopeCli, TrimmedTranslatedBoxIsItsClosedHull) {
   EXPECT_TRUE(o["closed"].get<bool>());
   EXPECT_TRUE(o["self_intersection_free"].get<bool>());
   EXPECT_NEAR(enclosed_volume(mesh), o["volume"].get<double>(), 1e-9);
+  // The box 1 x 2 x 0.5 along D = (3, -1, 2): abc + |Dx| bc + |Dy| ac + |Dz| ab.
+  EXPECT_NEAR(o["volume"].get<double>(), 1.0 + 3 * 2 * 0.5 + 1 * 1 * 0.5 + 2 * 1 * 2, 1e-9);
+  EXPECT_EQ(o["result_triangles"]["total"].get<std::int64_t>(), static_cast<std::int64_t>(mesh.num_triangles()));
+  EXPECT_EQ(o["result_triangles"]["caps"].get<std::int64_t>() + o["result_triangles"]["face_sweeps"].get<std::int64_t>() +
+                o["result_triangles"]["rank_deficient"].get<std::int64_t>(),
+            static_cast<std::int64_t>(mesh.num_triangles()));
+  EXPECT_EQ(o["trimming"]["tags_beyond_tolerance"].get<std::int64_t>(), 0);
+
+  // Every vertex carries its (u, v, w) and, after them, t and the generator patch: s there is
+  // the vertex.
+  std::ifstream ply(path("hull.ply"), std::ios::binary);
+  std::string line, header;
+  while (std::getline(ply, line) && line != "end_header") header += line + "\n";
+  ASSERT_NE(header.find("property double w\nproperty double t\nproperty int patch\n"), std::string::npos) << header;
+  const Model model = read_model(example("swept-translated-box.json"));
+  const auto patches = swept_patches(std::get<SweptSolid>(model.objects.at(0).spline));
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
+    double values[7];
+    std::int32_t patch = -1;
+    ply.read(reinterpret_cast<char*>(values), sizeof values);
+    ply.read(reinterpret_cast<char*>(&patch), sizeof patch);
+    ASSERT_TRUE(ply.good());
+    ASSERT_EQ(patch, 0);
+    const Eigen::VectorXd x = patches[0].evaluate({values[3], values[4], values[5], values[6]});
+    EXPECT_NEAR((Eigen::Vector3d(x[0], x[1], x[2]) - Eigen::Vector3d(values[0], values[1], values[2])).norm(), 0, 1e-9) << v;
+  }
 
   const auto s = test_support::run_cli("sweep-envelope " + example("swept-translated-box.json") + " -o " + path("superset.ply") +
                                        " --superset",

@@ -111,6 +111,12 @@ class SplineImage {
   /// skipped. Otherwise, or for a hint that names no patch, the full search. Outside and
   /// Undecided come from the search only, so the certificate is unchanged.
   Query query(const Eigen::Vector3d& x, const Preimage& hint) const;
+  /// A parameter of `start`'s patch whose image lies within `distance` of x, by Newton towards
+  /// the closest point of the image from `start` (clamped into the domain): for x on or just off
+  /// the image's boundary, the (u, v, w, t) of the boundary point x stands for. Nothing if Newton
+  /// ends farther (a start on another branch of the preimage). \throw InvalidInput if x is not
+  /// finite, `start` names no patch or `distance` is not positive.
+  std::optional<Preimage> preimage_near(const Eigen::Vector3d& x, const Preimage& start, double distance) const;
 
   const std::vector<TensorSpline<D>>& patches() const { return patches_; }
   /// The box of all control points (Euclidean, after elevation of weight-0 points).

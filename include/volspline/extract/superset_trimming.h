@@ -43,6 +43,12 @@ struct SupersetTrimmingStats {
   std::int64_t membership_queries = 0;
   /// Contouring: queries of points asked before (answered from memory, not counted above).
   std::int64_t membership_queries_remembered = 0;
+  /// Vertex tags (the parameters of the map a vertex lies on, SweptEnvelope::times and
+  /// patches included): how many were moved to a preimage within the tolerance of their vertex
+  /// (interpolated tags), how many found none (left as they were), and the largest distance
+  /// from a vertex to the image of its tag after that.
+  std::int64_t tags_corrected = 0, tags_beyond_tolerance = 0;
+  double largest_tag_distance = 0;
   /// The result: closed (every edge shared by two triangles), consistently oriented, free of
   /// self-intersections (CGAL, after rounding to doubles), its connected components and volume.
   bool closed = false, oriented = false, self_intersection_free = false;

@@ -20,6 +20,14 @@ enum class MeshFormat { Ply, Obj, Stl, Glb };
 /// \throw InvalidInput naming the path and the accepted extensions otherwise.
 MeshFormat mesh_format_from_path(const std::filesystem::path& path);
 
+/// One more PLY vertex property: a name and one value per vertex, written as `double`, or as
+/// `int` when `integer` (the values are then rounded).
+struct PlyVertexProperty {
+  std::string name;
+  std::vector<double> values;
+  bool integer = false;
+};
+
 struct MeshWriteOptions {
   /// Text instead of binary, for PLY and STL; OBJ is always text.
   bool ascii = false;
@@ -27,6 +35,8 @@ struct MeshWriteOptions {
   /// `scalar_name` — the field a picture was coloured by. Ignored by the other formats.
   std::vector<double> vertex_scalars{};
   std::string scalar_name = "scalar";
+  /// PLY: more vertex properties, after the scalar (a swept envelope's t and patch).
+  std::vector<PlyVertexProperty> vertex_properties{};
   /// glTF: one sRGB colour (components in [0, 1]) per vertex for COLOR_0 instead of the part
   /// colours, so a file coloured by a field looks like its picture.
   std::vector<Eigen::Vector3d> vertex_colors{};
@@ -43,6 +53,9 @@ bool is_ply_property_name(const std::string& name);
 /// is not a plain identifier.
 std::string ply_bytes(const TriangleMesh& mesh, bool ascii = false, const std::vector<double>& scalars = {},
                       const std::string& scalar_name = "scalar");
+/// The same with any number of further vertex properties after w, in order. \throw InvalidInput
+/// also for two properties of one name (x .. w included).
+std::string ply_bytes(const TriangleMesh& mesh, bool ascii, const std::vector<PlyVertexProperty>& properties);
 
 /// Wavefront OBJ: `v` lines and 1-based `f` lines grouped as `g part_N`, parts ascending.
 /// Parameters are not written.
