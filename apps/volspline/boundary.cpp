@@ -190,42 +190,15 @@ void run_boundary(const BoundaryArguments& a) {
       }
     }
   if (simplex_volumes == 0 || count_volumes(model) > 0) {
+    std::vector<BSplineVolume> trimmed_volumes;
+    std::vector<std::size_t> trimmed_objects;
     for_each_volume(model, a.input->path, [&](std::size_t i, const ModelObject&, const BSplineVolume& volume) {
       if (several) reporter().set_label("object " + std::to_string(i));
       if (a.trim) {
-        ImageContouringOptions contouring;
-        contouring.cell_size = a.trim_cell;
-        contouring.superset_error = std::min(0.25, 0.5 * a.trim_cell);
-        contouring.progress = options.progress;
-        const TrimmedSolidBoundary t = trimmed_solid_boundary({volume}, options, contouring);
-        mesh.append(t.mesh);
-        const SupersetTrimmingStats& ts = t.stats;
-        stats["objects"].push_back({{"object", i},
-                                    {"superset_triangles", t.superset_triangles},
-                                    {"triangles", ts.result_triangles},
-                                    {"grid_cell_size", ts.cell_size},
-                                    {"grid_cells", ts.grid_cells},
-                                    {"grid_corners", ts.grid_corners},
-                                    {"grid_corners_inferred", ts.grid_corners_inferred},
-                                    {"membership_queries", ts.membership_queries},
-                                    {"membership_queries_remembered", ts.membership_queries_remembered},
-                                    {"crossings_on_sheets", ts.crossings_on_sheets},
-                                    {"crossings_off_superset", ts.crossings_off_superset},
-                                    {"crease_vertices", ts.crease_vertices},
-                                    {"crease_repairs", ts.crease_repairs},
-                                    {"closed", ts.closed},
-                                    {"oriented", ts.oriented},
-                                    {"self_intersection_free", ts.self_intersection_free},
-                                    {"components", ts.components},
-                                    {"volume", ts.volume},
-                                    {"seconds", {{"grid", ts.seconds_refine}, {"classify", ts.seconds_classify}, {"checks", ts.seconds_checks}}}});
-        std::cout << "object " << i << ": trimmed boundary, " << ts.result_triangles << " triangles of " << t.superset_triangles
-                  << " in the superset, volume " << std::setprecision(6) << ts.volume << ", " << ts.components << " component"
-                  << (ts.components == 1 ? "" : "s") << (ts.closed ? ", closed" : ", open") << (ts.oriented ? ", oriented" : "")
-                  << (ts.self_intersection_free ? ", no self-intersections" : ", self-intersecting") << "\n";
-        if (!ts.closed || !ts.self_intersection_free)
-          std::cerr << "volspline: warning: object " << i << ": the trimmed boundary is not a closed, self-intersection-free surface"
-                    << (ts.open_at.empty() ? "" : " (open at " + ts.open_at + ")") << "\n";
+        // Trimmed together below: the boundary of the union of the volumes' images (a
+        // multi-patch solid's patches meet inside it).
+        trimmed_volumes.push_back(volume);
+        trimmed_objects.push_back(i);
         return;
       }
       const SolidBoundary b = solid_boundary(volume, options);
@@ -237,7 +210,51 @@ void run_boundary(const BoundaryArguments& a) {
                 << " of max |J|, " << s.seconds_total * 1e3 << " ms\n";
     });
     reporter().set_label("");
-    if (!a.trim) add_model_stats(stats);
+    if (a.trim) {
+      ImageContouringOptions contouring;
+      contouring.cell_size = a.trim_cell;
+      contouring.superset_error = std::min(0.25, 0.5 * a.trim_cell);
+      contouring.progress = options.progress;
+      const TrimmedSolidBoundary t = trimmed_solid_boundary(trimmed_volumes, options, contouring);
+      mesh.append(t.mesh);
+      const SupersetTrimmingStats& ts = t.stats;
+      stats["objects"].push_back({{"objects", trimmed_objects},
+                                  {"superset_triangles", t.superset_triangles},
+                                  {"triangles", ts.result_triangles},
+                                  {"grid_cell_size", ts.cell_size},
+                                  {"grid_cells", ts.grid_cells},
+                                  {"grid_corners", ts.grid_corners},
+                                  {"grid_corners_inferred", ts.grid_corners_inferred},
+                                  {"membership_queries", ts.membership_queries},
+                                  {"membership_queries_remembered", ts.membership_queries_remembered},
+                                  {"crossings_on_sheets", ts.crossings_on_sheets},
+                                  {"crossings_off_superset", ts.crossings_off_superset},
+                                  {"crease_vertices", ts.crease_vertices},
+                                  {"crease_repairs", ts.crease_repairs},
+                                  {"tags_corrected", ts.tags_corrected},
+                                  {"tags_beyond_tolerance", ts.tags_beyond_tolerance},
+                                  {"largest_tag_distance", ts.largest_tag_distance},
+                                  {"closed", ts.closed},
+                                  {"oriented", ts.oriented},
+                                  {"self_intersection_free", ts.self_intersection_free},
+                                  {"components", ts.components},
+                                  {"volume", ts.volume},
+                                  {"seconds", {{"grid", ts.seconds_refine}, {"classify", ts.seconds_classify}, {"checks", ts.seconds_checks}}}});
+      std::cout << (trimmed_objects.size() == 1 ? "object " + std::to_string(trimmed_objects[0])
+                                                : std::to_string(trimmed_objects.size()) + " volumes")
+                << ": trimmed boundary" << (trimmed_objects.size() == 1 ? "" : " of their union") << ", " << ts.result_triangles
+                << " triangles of " << t.superset_triangles << " in the superset, volume " << std::setprecision(6) << ts.volume << ", "
+                << ts.components << " component" << (ts.components == 1 ? "" : "s") << (ts.closed ? ", closed" : ", open")
+                << (ts.oriented ? ", oriented" : "") << (ts.self_intersection_free ? ", no self-intersections" : ", self-intersecting") << "\n";
+      if (!ts.closed || !ts.self_intersection_free)
+        std::cerr << "volspline: warning: the trimmed boundary is not a closed, self-intersection-free surface"
+                  << (ts.open_at.empty() ? "" : " (open at " + ts.open_at + ")") << "\n";
+      if (ts.tags_beyond_tolerance > 0)
+        std::cerr << "volspline: warning: " << ts.tags_beyond_tolerance << " vertices' (u, v, w) could not be made to map within the "
+                  << "superset's error of them (statistics: tags_beyond_tolerance)\n";
+    } else {
+      add_model_stats(stats);
+    }
   }
   RenderOptions render;
   render.width = wh[0];

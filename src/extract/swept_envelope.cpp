@@ -44,57 +44,6 @@ double control_diagonal(const std::vector<BSplineHypervolume>& patches) {
   return (hi - lo).norm();
 }
 
-// Each trimmed vertex's patch and (u, v, w, t), made to map within `distance` of it (issue 12:
-// "each vertex tagged with ... its (u,v,w,t)"). The contouring's tags are exact where a vertex
-// came from Newton on a sheet, but interpolated where it did not (crossings beside the
-// superset's triangles, crease points, bisection), and those can lie on another part of the
-// surface (0.2 of the diagonal off on the annulus's rims). Such a tag moves to a preimage near
-// the vertex: Newton towards the vertex from the tag; else from the membership search's
-// preimage of the vertex (inside the image); else, for a vertex just outside the image, from
-// the preimages of points stepped inwards along its normal.
-void retag_vertices(const SplineImage<4>& image, SweptEnvelope& e, double distance) {
-  const TriangleMesh& mesh = e.mesh;
-  const std::size_t n = mesh.num_vertices();
-  std::vector<Eigen::Vector3d> normal(n, Eigen::Vector3d::Zero());
-  for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d& a = mesh.positions[static_cast<std::size_t>(t[0])];
-    const Eigen::Vector3d area = (mesh.positions[static_cast<std::size_t>(t[1])] - a).cross(mesh.positions[static_cast<std::size_t>(t[2])] - a);
-    for (int v : t) normal[static_cast<std::size_t>(v)] += area;
-  }
-  std::vector<char> corrected(n, 0), beyond(n, 0);
-  std::vector<double> off(n, 0);
-  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t v) {
-    const Eigen::Vector3d& x = mesh.positions[v];
-    using Preimage = SplineImage<4>::Preimage;
-    Preimage tag{static_cast<std::size_t>(e.patches[v]), {mesh.parameters[v][0], mesh.parameters[v][1], mesh.parameters[v][2], e.times[v]}};
-    auto offset = [&](const Preimage& p) {
-      const Eigen::VectorXd y = image.patches()[p.patch].evaluate(p.parameter);
-      return (Eigen::Vector3d(y[0], y[1], y[2]) - x).norm();
-    };
-    off[v] = offset(tag);
-    if (off[v] <= distance) return;
-    std::optional<Preimage> found = image.preimage_near(x, tag, distance);
-    if (!found) found = image.query(x).preimage;
-    const double length = normal[v].norm();
-    for (double step : {2.0, 8.0})
-      if (!found && length > 0)
-        if (const auto inner = image.query(x - step * distance / length * normal[v]).preimage) found = image.preimage_near(x, *inner, distance);
-    if (!found) {
-      beyond[v] = 1;
-      return;
-    }
-    corrected[v] = 1;
-    off[v] = offset(*found);
-    e.patches[v] = static_cast<int>(found->patch);
-    e.mesh.parameters[v] = Eigen::Vector3d(found->parameter[0], found->parameter[1], found->parameter[2]);
-    e.times[v] = found->parameter[3];
-  });
-  SupersetTrimmingStats& st = e.stats.trimming;
-  st.tags_corrected = std::count(corrected.begin(), corrected.end(), 1);
-  st.tags_beyond_tolerance = std::count(beyond.begin(), beyond.end(), 1);
-  st.largest_tag_distance = n ? *std::max_element(off.begin(), off.end()) : 0.0;
-}
-
 // Samples per direction: the chord error of a segment of length h along direction d is about
 // |s_dd| h^2 / 8, so h = sqrt(8 tol / max |s_dd|) (sampled on a 5^4 grid of the domain), merged
 // with the breakpoints (face_samples) so that every Bézier piece is sampled.
@@ -515,7 +464,14 @@ SweptEnvelope trim_swept_envelope(const std::vector<BSplineHypervolume>& patches
     out.mesh = std::move(trimmed.mesh);
     out.times = std::move(trimmed.extra);
     for (int v : trimmed.source_vertex) out.patches.push_back(superset.patches[static_cast<std::size_t>(v)]);
-    retag_vertices(image, out, options.tolerance * control_diagonal(patches));
+    std::vector<Parameter4> tags(out.mesh.num_vertices());
+    for (std::size_t v = 0; v < tags.size(); ++v)
+      tags[v] = {out.mesh.parameters[v][0], out.mesh.parameters[v][1], out.mesh.parameters[v][2], out.times[v]};
+    correct_vertex_tags<4>(image, out.mesh, tags, out.patches, options.tolerance * control_diagonal(patches), out.stats.trimming);
+    for (std::size_t v = 0; v < tags.size(); ++v) {
+      out.mesh.parameters[v] = Eigen::Vector3d(tags[v][0], tags[v][1], tags[v][2]);
+      out.times[v] = tags[v][3];
+    }
     out.stats.seconds_total += seconds_since(start);
     return out;
   };

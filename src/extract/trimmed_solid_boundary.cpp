@@ -1,5 +1,6 @@
 #include "volspline/extract/trimmed_solid_boundary.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -70,6 +71,12 @@ TrimmedSolidBoundary trimmed_solid_boundary(const std::vector<BSplineVolume>& vo
   out.mesh = std::move(trimmed.mesh);
   out.stats = trimmed.stats;
   for (int v : trimmed.source_vertex) out.volumes.push_back(volume_of_vertex[static_cast<std::size_t>(v)]);
+  // Tags within the superset's error of their vertices (docs/envelopes.md, "Vertex tags").
+  std::vector<std::array<double, 3>> tags(out.mesh.num_vertices());
+  for (std::size_t v = 0; v < tags.size(); ++v) tags[v] = {out.mesh.parameters[v][0], out.mesh.parameters[v][1], out.mesh.parameters[v][2]};
+  const auto [low, high] = sheets.bounding_box();
+  correct_vertex_tags<3>(image, out.mesh, tags, out.volumes, std::max(contouring.superset_error, 1e-6) * (high - low).norm(), out.stats);
+  for (std::size_t v = 0; v < tags.size(); ++v) out.mesh.parameters[v] = Eigen::Vector3d(tags[v][0], tags[v][1], tags[v][2]);
   return out;
 }
 

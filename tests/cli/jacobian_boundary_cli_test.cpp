@@ -1,6 +1,8 @@
 // The jacobian and boundary subcommands end to end: JSON keys, exit codes, files, no leftovers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -61,6 +63,44 @@ TEST(BoundaryCli, MeshStatsAndPictureTogether) {
   // Uniform baseline and cone bounds run too.
   EXPECT_EQ(run_cli("boundary " + model + " -o " + out + " --method uniform --resolution 20", dir.path()).code, 0);
   EXPECT_EQ(run_cli("boundary " + model + " -o " + out + " --bounds cone --tol 0.05", dir.path()).code, 0);
+}
+
+// --trim on a model of two overlapping unit boxes ([0, 1]^3 and [0.5, 1.5] x [0, 1]^2): the
+// boundary of their union, one closed box of volume 1.5 with no vertex inside it, not two boxes
+// trimmed each on its own (which would keep the faces x = 0.5 and x = 1 inside the union).
+TEST(BoundaryCli, TrimGivesTheBoundaryOfTheUnionOfTheVolumes) {
+  test_support::TemporaryDirectory dir;
+  nlohmann::json objects = nlohmann::json::array();
+  for (const double x0 : {0.0, 0.5}) {
+    nlohmann::json points = nlohmann::json::array();
+    for (int z = 0; z < 2; ++z)
+      for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) points.push_back({x0 + x, y, z});
+    objects.push_back({{"type", "bspline_volume"}, {"degree", {1, 1, 1}}, {"knots", {{0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}}}, {"control_points", points}});
+  }
+  const auto model = (dir.path() / "two.json").string(), out = (dir.path() / "t.ply").string(), stats = (dir.path() / "s.json").string();
+  {
+    std::ofstream file(model);
+    file << nlohmann::json{{"volspline", 1}, {"objects", objects}}.dump();
+  }
+  const auto r = run_cli("boundary " + model + " --trim --trim-cell 2e-2 -o " + out + " --stats " + stats, dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 volumes: trimmed boundary of their union"), std::string::npos) << r.out;
+  const auto s = nlohmann::json::parse(read_file(stats));
+  ASSERT_EQ(s["objects"].size(), 1u);
+  const auto& o = s["objects"][0];
+  EXPECT_EQ(o["objects"], nlohmann::json({0, 1}));
+  EXPECT_TRUE(o["closed"].get<bool>());
+  EXPECT_TRUE(o["oriented"].get<bool>());
+  EXPECT_TRUE(o["self_intersection_free"].get<bool>());
+  EXPECT_EQ(o["components"].get<int>(), 1);
+  EXPECT_NEAR(o["volume"].get<double>(), 1.5, 1e-6);
+  EXPECT_EQ(o["tags_beyond_tolerance"].get<int>(), 0);
+  const TriangleMesh mesh = read_mesh(out);
+  for (const auto& x : mesh.positions) {
+    const double inside = std::min({x.x(), 1.5 - x.x(), x.y(), 1 - x.y(), x.z(), 1 - x.z()});
+    EXPECT_LT(std::abs(inside), 1e-6) << x.transpose();
+  }
 }
 
 TEST(BoundaryCli, BadInputLeavesNothingBehind) {
