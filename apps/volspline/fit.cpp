@@ -53,39 +53,6 @@ struct FitRequest {
   int knot_sweeps = KnotOptimisationOptions{}.sweeps;
 };
 
-// The N and tilt of two-material:N[:TILT] (tilt 0 when absent); N 0 for a malformed name.
-std::pair<int, double> two_material_parameters(const std::string& name) {
-  const std::string rest = name.substr(std::string("two-material:").size());
-  const std::size_t colon = rest.find(':');
-  int n = 0;
-  double tilt = 0;
-  try {
-    std::size_t used = 0;
-    const std::string count = rest.substr(0, colon);
-    n = std::stoi(count, &used);
-    if (used != count.size()) n = 0;
-    if (colon != std::string::npos) {
-      const std::string t = rest.substr(colon + 1);
-      tilt = std::stod(t, &used);
-      if (used != t.size() || !std::isfinite(tilt)) n = 0;
-    }
-  } catch (const std::exception&) {
-    n = 0;
-  }
-  return {n, tilt};
-}
-
-// The true field of generated data (the names data_of accepts), for --baselines; empty for files.
-std::function<Eigen::VectorXd(const Eigen::Vector3d&)> truth_of(const std::string& name) {
-  if (name.rfind("marschner-lobb:", 0) == 0)
-    return [](const Eigen::Vector3d& x) { return Eigen::VectorXd::Constant(1, marschner_lobb(x)); };
-  if (name.rfind("two-material:", 0) == 0) {
-    const double tilt = two_material_parameters(name).second;
-    return [tilt](const Eigen::Vector3d& x) { return Eigen::VectorXd::Constant(1, two_material(x, tilt)); };
-  }
-  return {};
-}
-
 nlohmann::json baselines_json(const std::vector<MethodError>& errors) {
   nlohmann::json out = nlohmann::json::array();
   auto number = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
@@ -106,26 +73,7 @@ nlohmann::json baselines_json(const std::vector<MethodError>& errors) {
 }
 
 VolumeData data_of(const std::string& name) {
-  if (name.rfind("two-material:", 0) == 0) {
-    const auto [n, tilt] = two_material_parameters(name);
-    if (n < 2 || n > 400)
-      throw InvalidInput("expected two-material:N or two-material:N:TILT with N in 2..400 and a finite tilt, got '" + name + "'", "DATA");
-    return two_material_data(n, tilt);
-  }
-  for (const std::string kind : {"marschner-lobb:"}) {
-    if (name.rfind(kind, 0) != 0) continue;
-    const std::string count = name.substr(kind.size());
-    int n = 0;
-    try {
-      std::size_t used = 0;
-      n = std::stoi(count, &used);
-      if (used != count.size()) n = 0;
-    } catch (const std::exception&) {
-      n = 0;
-    }
-    if (n < 2 || n > 400) throw InvalidInput("expected " + kind + "N with N in 2..400, got '" + name + "'", "DATA");
-    return marschner_lobb_data(n);
-  }
+  if (std::optional<VolumeData> generated = generated_volume_data(name)) return std::move(*generated);
   return read_volume_data(name);
 }
 
@@ -305,7 +253,7 @@ void fit_file(const FitRequest& r) {
   if (r.baselines) {
     if (progress) progress->begin_phase("baselines");
     FitComparisonOptions comparison;
-    comparison.truth = truth_of(r.data);
+    comparison.truth = generated_volume_truth(r.data);
     baselines = compare_volume_fits(data, std::get<DmsSplineVolume>(model.objects.front().spline), comparison);
     if (progress) progress->end_phase();
   }
@@ -362,7 +310,7 @@ void fit_file(const FitRequest& r) {
   }
   if (r.baselines) {
     std::cout << "  baselines (normalised mean square / max error at the data points"
-              << (truth_of(r.data) ? "; against the true field at random points" : "") << "):\n";
+              << (generated_volume_truth(r.data) ? "; against the true field at random points" : "") << "):\n";
     for (const MethodError& e : baselines) {
       std::cout << "    " << e.method << ", " << e.attribute << ", " << e.coefficients << " coefficients: "
                 << format_double(e.normalised_data_mean_square) << " / " << format_double(e.normalised_data_max_abs);

@@ -117,11 +117,10 @@ VolumeData volume_data_from(const py::object& data) {
     return out;
   }
   const std::string name = py::str(data);
-  for (const std::string kind : {"marschner-lobb:", "two-material:"}) {
-    if (name.rfind(kind, 0) != 0) continue;
-    const int n = std::atoi(name.c_str() + kind.size());
-    if (n < 2 || n > 400) throw InvalidInput("data: expected " + kind + "N with N in 2..400, got '" + name + "'");
-    return kind == "marschner-lobb:" ? marschner_lobb_data(n) : two_material_data(n);
+  try {
+    if (std::optional<VolumeData> generated = generated_volume_data(name)) return std::move(*generated);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(std::string("data: ") + e.what());
   }
   return read_volume_data(data.cast<std::filesystem::path>());
 }

@@ -184,6 +184,16 @@ def test_fit_of_grid_data_uses_the_lattice_layout_with_fairing():
     assert stats["attributes"]["f"]["max_abs"] < 1e-6
 
 
+def test_generated_data_names_keep_their_parameters():
+    # two-material:N:TILT is the data the command line fits for the same name: the tilt counts.
+    straight, _ = volspline.fit("two-material:9", 1)
+    tilted, _ = volspline.fit("two-material:9:0.37", 1)
+    x = np.array([[0.3, 0.9, 0.5]])  # x + 0.37 y = 0.633 > 0.5 when tilted, 0.3 < 0.5 when not
+    assert straight.evaluate(x)["attributes"]["material"][0] < 1.5 < tilted.evaluate(x)["attributes"]["material"][0]
+    with pytest.raises(Exception, match="two-material:N:TILT"):
+        volspline.fit("two-material:9:x", 1)
+
+
 def test_fit_local_knot_step_moves_primary_knots_unless_told_not_to():
     # A degree-1 DMS spline interpolates at the primary knots whatever the sub-knots: only moving
     # primary knots lowers its error (docs/fitting.md, "The local step").

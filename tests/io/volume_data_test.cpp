@@ -248,5 +248,33 @@ TEST(VolumeDataExamples, MarschnerLobbMatchesItsClosedFormAtKnownPoints) {
   }
 }
 
+// The names the command line and Python take for generated data: the same points and values as
+// the functions, the tilt kept, the truth the function; malformed names refused with what was
+// expected; other names (files) left alone.
+TEST(VolumeDataExamples, GeneratedDataNamesGiveTheirDataAndTruth) {
+  const auto tilted = generated_volume_data("two-material:6:0.37");
+  ASSERT_TRUE(tilted);
+  const VolumeData direct = two_material_data(6, 0.37);
+  ASSERT_EQ(tilted->size(), direct.size());
+  EXPECT_EQ(tilted->attributes, direct.attributes);
+  const auto truth = generated_volume_truth("two-material:6:0.37");
+  ASSERT_TRUE(truth);
+  EXPECT_EQ(truth(Eigen::Vector3d(0.3, 0.9, 0.5))[0], two_material({0.3, 0.9, 0.5}, 0.37));
+  EXPECT_EQ(generated_volume_data("marschner-lobb:7")->size(), 343u);
+  EXPECT_EQ(generated_volume_truth("marschner-lobb:7")(Eigen::Vector3d(1, 0, 0))[0], marschner_lobb({1, 0, 0}));
+  EXPECT_FALSE(generated_volume_data("fire_ug.vtu"));
+  EXPECT_FALSE(generated_volume_truth("fire_ug.vtu"));
+  for (const char* bad : {"two-material:", "two-material:6:x", "two-material:6:0.3:1", "two-material:1", "two-material:401",
+                          "two-material:6:inf", "marschner-lobb:7:1", "marschner-lobb:x", "marschner-lobb:7x"}) {
+    try {
+      generated_volume_data(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("expected"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace volspline

@@ -1,6 +1,8 @@
 #pragma once
 // Volume data sets made in code, for fitting tests and measurements (docs/fitting.md).
 #include <functional>
+#include <optional>
+#include <string>
 
 #include <Eigen/Core>
 
@@ -30,5 +32,15 @@ VolumeData two_material_data(int n, double tilt = 0);
 /// Samples f at `points`: one attribute `name`.
 VolumeData sampled_volume_data(const std::vector<Eigen::Vector3d>& points, const std::string& name,
                                const std::function<double(const Eigen::Vector3d&)>& f);
+
+/// The data a generated-data name stands for: `marschner-lobb:N` (N in 2..400) or
+/// `two-material:N[:TILT]` (N in 2..400, a finite tilt, 0 when absent); nothing for any other
+/// name (a file). The command line and Python take these wherever they take data files.
+/// \throw InvalidInput (where "DATA") for a name with one of those prefixes that is malformed.
+std::optional<VolumeData> generated_volume_data(const std::string& name);
+
+/// The true field of a generated-data name (one value per point), for errors against the truth;
+/// an empty function for any other name. \throw InvalidInput as generated_volume_data.
+std::function<Eigen::VectorXd(const Eigen::Vector3d&)> generated_volume_truth(const std::string& name);
 
 }  // namespace volspline
