@@ -79,7 +79,7 @@ endif()
 # (cmake/package.cmake installs those of the components built).
 set(VOLSPLINE_COMPONENT_RULES
   "vtk=(io/volume_data_vtk|mesh/tetrahedral_mesh_reader)\\.cpp$"
-  "render=(render/mesh_renderer|pipeline/solid_view_picture)\\.cpp$"
+  "render=(render/mesh_renderer|render/point_cloud_image|pipeline/solid_view_picture)\\.cpp$"
   "cgal=simplex/"
   "cgal=extract/simplex_"
   "cgal=extract/(superset_trimming|image_contouring|image_membership|sheet_refinement|swept_envelope|trimmed_solid_boundary)\\.cpp$"

@@ -34,6 +34,7 @@ void add_blend_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 void add_sweep_envelope_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
+void add_data_command(CLI::App& app);
 void add_batch_command(CLI::App& app);
 /// `volspline [global options] batch ...` (batch.cpp): replaces this process by the Python module
 /// volspline.batch, or returns the exit code of an error (2); nullopt for any other command.
@@ -51,6 +52,9 @@ struct SimplexDemoInputs {
 };
 /// The simplex-spline examples of `demo` (demo_simplex.cpp): Hua-He-Qin Figs. 1, 5 and 6.
 void write_simplex_demo(DemoRun& demo, const SimplexDemoInputs& inputs);
+/// Fitting volume data (demo_fitting.cpp): fire_ug's temperature (skipped without the data
+/// folder), Marschner–Lobb's isosurface against the formula's, a jump with fixed and aligned knots.
+void write_fitting_demo(DemoRun& demo, const SimplexDemoInputs& inputs);
 /// Conkey–Joy Figs. 4-8: swept solids' envelopes, superset beside trimmed (demo_sweeps.cpp).
 void write_sweeps_demo(DemoRun& demo, const std::filesystem::path& examples);
 

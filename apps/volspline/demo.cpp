@@ -152,6 +152,7 @@ void add_demo_command(CLI::App& app) {
     write_view_demo(demo);   // Lasser §IV: isoparametric surfaces, slices, cutaways, colouring
     write_simplex_demo(demo, *simplex_inputs);  // Hua-He-Qin Figs. 1, 5, 6
     write_sweeps_demo(demo, simplex_inputs->examples);  // Conkey-Joy Figs. 4-8
+    write_fitting_demo(demo, *simplex_inputs);  // Hua-He-Qin §5: fire_ug, Marschner-Lobb, a jump
     demo.check_selection();
     if (!demo.selective()) {
       demo.gallery().write(*dir);

@@ -20,6 +20,7 @@
 #include "view_command.h"
 #include "volspline/core/error.h"
 #include "volspline/extract/simplex_cells.h"
+#include "volspline/io/atomic_file.h"
 #include "volspline/io/model_file.h"
 #include "volspline/io/skeleton_file.h"
 #include "volspline/mesh/delaunay_tetrahedralization.h"

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.h"
+#include "fit_command.h"
 #include "progress_bar.h"
 #include "commands.h"
 #include "volspline/construct/volume_data_examples.h"
@@ -33,25 +34,6 @@
 namespace volspline::cli {
 namespace {
 
-struct FitRequest {
-  std::string data, out, attributes, stats, png;
-  int degree = 2;
-  int primary_knots = 0;
-  double error = 0;
-  long long max_tetrahedra = 0;
-  double seconds = 0;
-  std::string knots = "fixed";
-  bool baselines = false;
-  double fairing = ControlVectorFitOptions{}.fairing;
-  CLI::Option* fairing_option = nullptr;
-  double jump = 0;
-  std::string layout = "auto";
-  int placement_rounds = KnotOptimisationOptions{}.placement_rounds;
-  double spacing_ratio = KnotOptimisationOptions{}.spacing_ratio;
-  bool fixed_primary_knots = false;
-  bool judge_local_step_at_data = false;
-  int knot_sweeps = KnotOptimisationOptions{}.sweeps;
-};
 
 nlohmann::json baselines_json(const std::vector<MethodError>& errors) {
   nlohmann::json out = nlohmann::json::array();
@@ -180,7 +162,9 @@ nlohmann::json statistics_json(const VolumeFitStatistics& s, const std::string& 
   return j;
 }
 
-void fit_file(const FitRequest& r) {
+}  // namespace
+
+void run_fit(const FitArguments& r, std::ostream& out) {
   VolumeData data = data_of(r.data);
   try {
     data = select_attributes(data, split_names(r.attributes));
@@ -217,7 +201,7 @@ void fit_file(const FitRequest& r) {
   if (!(r.fairing >= 0) || !std::isfinite(r.fairing)) throw InvalidInput("expected a fairing weight >= 0, got " + format_double(r.fairing), "--fairing");
   options.fit.fairing = r.fairing;
   // An explicit --fairing, 0 too, is kept.
-  if (r.fairing_option && r.fairing_option->count() > 0) options.default_fairing = r.fairing;
+  if (r.fairing_given || (r.fairing_option && r.fairing_option->count() > 0)) options.default_fairing = r.fairing;
   if (!(r.jump >= 0) || !std::isfinite(r.jump)) throw InvalidInput("expected a jump >= 0, got " + format_double(r.jump), "--jump");
   options.jump = r.jump;
   options.refinement.error = r.error;
@@ -263,37 +247,37 @@ void fit_file(const FitRequest& r) {
     write_file_atomically(r.stats, j.dump(2) + "\n");
   }
   const VolumeFitErrors& e = statistics.errors;
-  std::cout << "wrote " << r.out << ": degree " << r.degree << " simplex spline fitted to " << e.fitted_points << " of " << e.data_points
+  out << "wrote " << r.out << ": degree " << r.degree << " simplex spline fitted to " << e.fitted_points << " of " << e.data_points
             << " points (" << e.outside_points << " outside the domain), " << statistics.domain_tetrahedra << " tetrahedra, "
             << statistics.control_points << " control points, " << statistics.knots << " knots\n";
-  std::cout << "  primary knots: " << (statistics.layout == "lattice" ? "body-centred cubic lattice" : "farthest-point samples")
+  out << "  primary knots: " << (statistics.layout == "lattice" ? "body-centred cubic lattice" : "farthest-point samples")
             << (r.layout == "auto" && statistics.layout == "lattice" ? " (the data form a complete grid)" : "") << ", fairing "
             << (std::ostringstream() << statistics.fairing).str() << "\n";
-  std::cout << "  geometry: mean square error " << format_double(e.geometric_mean_square) << "\n";
+  out << "  geometry: mean square error " << format_double(e.geometric_mean_square) << "\n";
   if (e.attributes.size() > 1)
-    std::cout << "  fields: normalised mean square error " << format_double(mean_normalised_field_error(e)) << " (mean over "
+    out << "  fields: normalised mean square error " << format_double(mean_normalised_field_error(e)) << " (mean over "
               << e.attributes.size() << " attributes), "
               << format_double(static_cast<double>(statistics.control_points) / static_cast<double>(std::max<std::size_t>(1, e.data_points)))
               << " control points per data point\n";
   for (const auto& f : e.attributes)
-    std::cout << "  " << f.name << " (data " << format_double(f.data_min) << " .. " << format_double(f.data_max) << "): mean square error "
+    out << "  " << f.name << " (data " << format_double(f.data_min) << " .. " << format_double(f.data_max) << "): mean square error "
               << format_double(f.mean_square) << " (normalised " << format_double(f.normalised_mean_square) << "), max "
               << format_double(f.max_abs) << " (normalised " << format_double(f.normalised_max_abs) << ")\n";
   if (statistics.sharp_features.enabled) {
     const SharpFeatureReport& sh = statistics.sharp_features;
-    std::cout << "  sharp features: regions of " << sh.region_points[0] << " and " << sh.region_points[1] << " points, "
+    out << "  sharp features: regions of " << sh.region_points[0] << " and " << sh.region_points[1] << " points, "
               << sh.interface_samples << " interface samples, " << sh.cut_tetrahedra << " tetrahedra cut, " << sh.snapped_points
               << " points moved onto the interface, " << sh.points_across << " data points across it (not fitted)\n";
   }
   if (r.knots != "fixed") {
     const KnotPlacementReport& p = statistics.knot_placement;
-    std::cout << "  knot placement: " << (p.kept ? "round " + std::to_string(p.kept) : std::string("no round")) << " of " << p.rounds
+    out << "  knot placement: " << (p.kept ? "round " + std::to_string(p.kept) : std::string("no round")) << " of " << p.rounds
               << " kept, normalised field mean square "
               << format_double(p.before) << " -> " << format_double(p.after) << " (at the held-out eighth of the points: "
               << format_double(p.held_out_before) << " -> " << format_double(p.held_out_after) << ")\n";
     const KnotOptimisationReport& k = statistics.knot_optimisation;
     if (r.knots == "optimise")
-      std::cout << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved ("
+      out << "  knot optimisation: " << k.vertices_moved << " of " << k.vertices_tried << " vertex clouds moved ("
               << k.primary_knots_moved << " with their primary knot) in " << k.sweeps << " sweeps (" << k.kept_sweeps << " kept), normalised field mean square " << format_double(k.before) << " -> " << format_double(k.after)
                 << (k.judged_on_held_out ? " (at the held-out eighth of the points: " + format_double(k.held_out_before) + " -> " + format_double(k.held_out_after) + ")"
                                          : std::string(" (judged at the data)"))
@@ -304,30 +288,28 @@ void fit_file(const FitRequest& r) {
     const std::string line = "adaptive refinement to " + format_double(r.error) + ": " + std::to_string(refinement.rounds.size() - 1) +
                              " rounds, " + refinement_stop_text(refinement.stop) + "; " + std::to_string(refinement.above) +
                              " tetrahedra above the bound";
-    std::cout << "  " << line << "\n";
+    out << "  " << line << "\n";
     // Never silent: a budget that stopped the refinement is also said on stderr.
     if (refinement.stop != RefinementStop::Converged) reporter().warn(line);
   }
   if (r.baselines) {
-    std::cout << "  baselines (normalised mean square / max error at the data points"
+    out << "  baselines (normalised mean square / max error at the data points"
               << (generated_volume_truth(r.data) ? "; against the true field at random points" : "") << "):\n";
     for (const MethodError& e : baselines) {
-      std::cout << "    " << e.method << ", " << e.attribute << ", " << e.coefficients << " coefficients: "
+      out << "    " << e.method << ", " << e.attribute << ", " << e.coefficients << " coefficients: "
                 << format_double(e.normalised_data_mean_square) << " / " << format_double(e.normalised_data_max_abs);
       if (!std::isnan(e.truth_mean_square))
-        std::cout << "; truth " << format_double(e.normalised_truth_mean_square) << " / " << format_double(e.normalised_truth_max_abs);
-      std::cout << "\n";
+        out << "; truth " << format_double(e.normalised_truth_mean_square) << " / " << format_double(e.normalised_truth_max_abs);
+      out << "\n";
     }
   }
-  std::cout << "  time:";
-  for (const auto& p : statistics.phases) std::cout << " " << p.name << " " << format_double(p.seconds) << " s;";
-  std::cout << "\n";
+  out << "  time:";
+  for (const auto& p : statistics.phases) out << " " << p.name << " " << format_double(p.seconds) << " s;";
+  out << "\n";
 }
 
-}  // namespace
-
 void add_fit_command(CLI::App& app) {
-  auto r = std::make_shared<FitRequest>();
+  auto r = std::make_shared<FitArguments>();
   auto* cmd = app.add_subcommand("fit", "Fit scattered volume data (points with attributes) with a trivariate simplex spline "
                                         "(Hua-He-Qin 5: domain from the data, least squares, adaptive refinement)");
   cmd->add_option("DATA", r->data,
@@ -377,7 +359,7 @@ void add_fit_command(CLI::App& app) {
                 "also fit what a user would pick instead and compare: a tensor-product B-spline least-squares fit with as many "
                 "coefficients, and trilinear and nearest interpolation for grid data; errors at the data points and, for "
                 "generated data, against the true field");
-  cmd->callback([r] { fit_file(*r); });
+  cmd->callback([r] { run_fit(*r, std::cout); });
 }
 
 }  // namespace volspline::cli

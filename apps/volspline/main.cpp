@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
   volspline::cli::add_xray_command(app);
   volspline::cli::add_split_tetrahedron_command(app);
   volspline::cli::add_fit_command(app);
+  volspline::cli::add_data_command(app);
   volspline::cli::add_demo_command(app);
   volspline::cli::add_batch_command(app);
   auto& flags = volspline::cli::global_flags();

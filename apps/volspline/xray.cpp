@@ -1,5 +1,5 @@
 // volspline xray MODEL -o IMAGE.png [--attribute A] [--size W,H] [--view DX,DY,DZ] [--up UX,UY,UZ]
-//   [--fov DEG] [--absorption K] [--raw OUT.pfm] [--object I]
+//   [--fov DEG] [--absorption K] [--baseline B] [--raw OUT.pfm] [--object I]
 // The X-ray (absorption) picture of an attribute of a simplex spline volume (Hua–He–Qin §6.1,
 // render/xray_image.h), its line integrals computed analytically.
 #include <iostream>
@@ -21,6 +21,7 @@ struct XrayRequest {
   std::string out, attribute, size = "512,512", view, up, raw;
   double fov = 0;
   double absorption = std::numeric_limits<double>::quiet_NaN();
+  double baseline = 0;
   long long object = 0;
 };
 
@@ -38,6 +39,8 @@ void add_xray_command(CLI::App& app) {
   cmd->add_option("--up", r->up, "UX,UY,UZ: the direction shown upwards (default 0,0,1)");
   cmd->add_option("--fov", r->fov, "angle of view in degrees; 0 (default) is a parallel projection");
   cmd->add_option("--absorption", r->absorption, "the absorption coefficient k (default: the largest integral absorbs 86%)");
+  cmd->add_option("--baseline", r->baseline,
+                  "subtract this from the attribute before integrating (e.g. the ambient temperature; default 0)");
   cmd->add_option("--raw", r->raw, "also write the line integrals as a float image (.pfm)");
   cmd->add_option("--object", r->object, "index of the simplex_spline_volume object (default: the first)");
   cmd->callback([=] {
@@ -62,6 +65,7 @@ void add_xray_command(CLI::App& app) {
     }
     options.field_of_view_deg = r->fov;
     options.absorption = r->absorption;
+    options.baseline = r->baseline;
     const XrayRenderer renderer(*volume, options);
     write_png(renderer.image(), r->out);
     if (!r->raw.empty()) write_pfm(renderer.picture().line_integrals, options.width, options.height, r->raw);

@@ -78,6 +78,7 @@ XrayRenderer::XrayRenderer(const DmsSplineVolume& volume, const XrayOptions& opt
   if (options.width < 1 || options.height < 1 || options.width > 8192 || options.height > 8192)
     throw InvalidInput("expected an image size from 1 x 1 to 8192 x 8192, got " + std::to_string(options.width) + " x " +
                        std::to_string(options.height));
+  if (!std::isfinite(options.baseline)) throw InvalidInput("expected a finite baseline", "baseline");
   if (!(options.view_direction.norm() > 0) || !options.view_direction.allFinite())
     throw InvalidInput("expected a nonzero view direction");
   if (!(options.field_of_view_deg >= 0 && options.field_of_view_deg < 170))
@@ -273,7 +274,11 @@ void XrayRenderer::render() {
         }
       }
     }
-    for (const Ray& ray : rays) picture_.line_integrals[ray.pixel] = ray.sum;
+    for (const Ray& ray : rays) {
+      double length = 0;
+      for (int c = ray.c0; c < ray.c1; ++c) length += s.chords[static_cast<std::size_t>(c)][1] - s.chords[static_cast<std::size_t>(c)][0];
+      picture_.line_integrals[ray.pixel] = ray.sum - options_.baseline * length;
+    }
   });
   picture_.tetrahedron_integrals = 0;
   for (const Local& l : locals) picture_.tetrahedron_integrals += l.count;

@@ -378,6 +378,25 @@ TEST_F(Cli, DemoWritesEveryExampleAndItsGallery) {
     ASSERT_EQ(std::system(("cd " + out.string() + " && " + line + " >/dev/null").c_str()), 0) << line;
     EXPECT_TRUE(std::filesystem::exists(out / srcs[0]));
   }
+  // Fitting (issue 14): the formula's isosurface (`data`) and a fit with its slices (`fit` +
+  // `view`), run in the demo folder, redraw their pictures byte for byte; fire_ug's three
+  // pictures where the shared data is.
+  for (const char* title : {"fit-marschner-lobb-truth", "fit-jump-aligned-knots"}) {
+    ASSERT_TRUE(entries.contains(title)) << title;
+    const auto& [srcs, command] = entries[title];
+    ASSERT_EQ(srcs.size(), 1u);
+    const std::string before = read_file(out / srcs[0]);
+    std::filesystem::remove(out / srcs[0]);
+    const std::string line = std::regex_replace(command, std::regex("(^|&& )volspline "), std::string("$1") + VOLSPLINE_CLI + " ");
+    ASSERT_EQ(std::system(("cd " + out.string() + " && " + line + " >/dev/null").c_str()), 0) << line;
+    EXPECT_EQ(read_file(out / srcs[0]), before) << title;
+  }
+  for (const char* title : {"fit-marschner-lobb-data", "fit-marschner-lobb-fit", "fit-jump-fixed-knots"}) EXPECT_TRUE(entries.contains(title)) << title;
+  if (std::filesystem::exists(data / "volumes" / "fire_ug.vtu")) {
+    for (const char* title : {"fit-fire-data", "fit-fire-xray", "fit-fire-iso"}) EXPECT_TRUE(entries.contains(title)) << title;
+  } else {
+    EXPECT_NE(demo.out.find("fit-fire: skipped"), std::string::npos) << demo.out;
+  }
   EXPECT_FALSE(std::filesystem::exists(again / "index.html"));  // --only leaves the gallery alone
   const auto r = run("demo --only no-such-example --out " + again.string(), dir());
   EXPECT_EQ(r.code, 2);

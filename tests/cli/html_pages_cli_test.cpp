@@ -23,7 +23,7 @@ class HtmlPagesCli : public ::testing::Test {
  protected:
   test_support::TemporaryDirectory tmp;
   std::string path(const std::string& name) const { return (tmp.path() / name).string(); }
-  static std::string example(const std::string& name) { return std::string(VOLSPLINE_SOURCE_DIR) + "/examples/" + name; }
+  static std::string example(const std::string& name) { return (std::filesystem::path(VOLSPLINE_SOURCE_DIR) / "examples" / name).string(); }
   // The data of a written page.
   nlohmann::json page_data(const std::string& name) const {
     std::ifstream in(path(name));

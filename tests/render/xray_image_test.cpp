@@ -2,6 +2,7 @@
 // is the chord length through Ω, of a linear attribute the chord length times its value at the
 // chord's midpoint; the incremental update of eq. 12 equals rendering again.
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -79,6 +80,33 @@ TEST(XrayImage, LinearAttributeIntegratesToLengthTimesMidpointValue) {
         EXPECT_NEAR(renderer.picture().line_integrals[static_cast<std::size_t>(y * options.width + x)], expected, 1e-9);
       }
   }
+}
+
+// A baseline b: the line integral of f - b, i.e. the integral of f less b times the chord.
+TEST(XrayImage, ABaselineIsSubtractedAlongTheChord) {
+  DmsSplineVolume v = test_support::cube_simplex_volume(2);
+  const Eigen::Vector3d a(0.7, -0.4, 1.3);
+  set_column_from_blossom(v, 3, [&](std::span<const Eigen::Vector3d> args) {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& x : args) mean += x;
+    return a.dot(mean / static_cast<double>(args.size())) + 300;  // an affine field around 300
+  });
+  XrayOptions options = small_options();
+  const XrayRenderer plain(v, options);
+  options.baseline = 298;
+  const XrayRenderer above(v, options);
+  for (int y = 0; y < options.height; ++y)
+    for (int x = 0; x < options.width; ++x) {
+      Eigen::Vector3d o, d;
+      above.pixel_ray(x, y, o, d);
+      double t0, t1;
+      const double chord = cube_chord(o, d, t0, t1) ? t1 - t0 : 0.0;
+      const auto p = static_cast<std::size_t>(y * options.width + x);
+      EXPECT_NEAR(above.picture().line_integrals[p], plain.picture().line_integrals[p] - 298 * chord, 1e-8);
+      EXPECT_NEAR(above.picture().line_integrals[p], chord * (a.dot(o + (t0 + t1) / 2 * d) + 2), 1e-8);
+    }
+  options.baseline = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(XrayRenderer(v, options), InvalidInput);
 }
 
 TEST(XrayImage, IncrementalUpdateEqualsRenderingAgain) {

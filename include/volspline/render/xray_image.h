@@ -34,6 +34,10 @@ struct XrayOptions {
   /// The absorption coefficient k; NaN (the default) picks k so that the largest line integral
   /// absorbs 1 − e^{-2} ≈ 86 % of the light.
   double absorption = std::numeric_limits<double>::quiet_NaN();
+  /// Subtracted from the attribute before it is integrated: the picture shows f − baseline (say
+  /// a temperature above the ambient one, which would otherwise absorb alike everywhere). The
+  /// integral of the constant is the baseline times the chord length through Ω.
+  double baseline = 0;
 };
 
 /// Per-pixel line integrals and what they look like.
