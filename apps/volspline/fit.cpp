@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -42,6 +43,7 @@ nlohmann::json baselines_json(const std::vector<MethodError>& errors) {
     out.push_back({{"method", e.method},
                    {"attribute", e.attribute},
                    {"coefficients", e.coefficients},
+                   {"data_points", e.data_points},
                    {"data_mean_square", e.data_mean_square},
                    {"data_max_abs", e.data_max_abs},
                    {"normalised_data_mean_square", e.normalised_data_mean_square},
@@ -247,6 +249,13 @@ void run_fit(const FitArguments& r, std::ostream& out) {
     write_file_atomically(r.stats, j.dump(2) + "\n");
   }
   const VolumeFitErrors& e = statistics.errors;
+  if (e.outside_points > 0)
+    std::cerr << "volspline: warning: " << e.outside_points << " of " << e.data_points << " data points ("
+              << (std::ostringstream() << std::fixed << std::setprecision(1)
+                                       << 100.0 * static_cast<double>(e.outside_points) / static_cast<double>(std::max<std::size_t>(1, e.data_points)))
+                     .str()
+              << " %) lie outside the domain (the primary knots' Delaunay tetrahedra kept by the occupancy map): they are not "
+                 "fitted and not in the errors; more --primary-knots cover more (docs/fitting.md, \"The domain\")\n";
   out << "wrote " << r.out << ": degree " << r.degree << " simplex spline fitted to " << e.fitted_points << " of " << e.data_points
             << " points (" << e.outside_points << " outside the domain), " << statistics.domain_tetrahedra << " tetrahedra, "
             << statistics.control_points << " control points, " << statistics.knots << " knots\n";

@@ -17,6 +17,12 @@ namespace volspline {
 VolumeData read_volume_data(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  // NIfTI images are often gzip-compressed (name.nii.gz); VTK's reader inflates them itself.
+  if (extension == ".gz") {
+    std::string stem = path.stem().extension().string();
+    std::transform(stem.begin(), stem.end(), stem.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (stem == ".nii") extension = ".nii";
+  }
   const std::string source = path.string();
   VolumeData data;
   if (extension == ".csv") data = parse_volume_csv(read_file(path), source);
@@ -30,7 +36,7 @@ VolumeData read_volume_data(const std::filesystem::path& path) {
 #endif
   else
     throw InvalidInput("unknown volume data format " + (extension.empty() ? std::string("(no extension)") : extension) +
-                           " (.csv, .ply, .vtu, .vti, .vtk, .inr or .nii expected)",
+                           " (.csv, .ply, .vtu, .vti, .vtk, .inr, .nii or .nii.gz expected)",
                        source);
   validate_volume_data(data, source);
   return data;

@@ -5,6 +5,7 @@
 #include "volume_data_vtk.h"
 
 #include <cctype>
+#include <cmath>
 #include <fstream>
 
 #include <vtkCallbackCommand.h>
@@ -12,11 +13,20 @@
 #include <vtkDataArray.h>
 #include <vtkDataSet.h>
 #include <vtkDataSetReader.h>
+#include <vtkPolyDataReader.h>
+#include <vtkRectilinearGridReader.h>
+#include <vtkStructuredGridReader.h>
+#include <vtkStructuredPointsReader.h>
+#include <vtkUnstructuredGridReader.h>
 #include <vtkExecutive.h>
 #include <vtkImageData.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNIFTIImageReader.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkSmartPointer.h>
 #include <vtkPointData.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
@@ -72,15 +82,8 @@ VolumeData read_with(const std::filesystem::path& path, const char* expected) {
   VtkErrors errors;
   vtkNew<Reader> reader;
   errors.watch(*reader);
-  if constexpr (!std::is_same_v<Reader, vtkDataSetReader>) {
-    if (!reader->CanReadFile(source.c_str())) throw InvalidInput(std::string("not ") + expected, source);
-  }
+  if (!reader->CanReadFile(source.c_str())) throw InvalidInput(std::string("not ") + expected, source);
   reader->SetFileName(source.c_str());
-  if constexpr (std::is_same_v<Reader, vtkDataSetReader>) {
-    reader->ReadAllScalarsOn();
-    reader->ReadAllVectorsOn();
-    reader->ReadAllTensorsOff();
-  }
   reader->Update();
   if (!errors.first.empty()) throw InvalidInput(vtk_message_text(errors.first), source);
   vtkDataSet* set = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
@@ -91,7 +94,115 @@ VolumeData read_with(const std::filesystem::path& path, const char* expected) {
     // the voxel centres as (i, j, k) * spacing and leaves the matrix to the caller.
     to_world = reader->GetSFormMatrix() ? reader->GetSFormMatrix() : reader->GetQFormMatrix();
   }
-  return from_dataset(set, source, to_world);
+  VolumeData data = from_dataset(set, source, to_world);
+  if constexpr (std::is_same_v<Reader, vtkNIFTIImageReader>) {
+    // The stored values are scl_slope * raw + scl_inter (NIfTI-1; a slope of 0 means none): CT
+    // images store Hounsfield units so. VTK reads the raw values and reports the two.
+    const double slope = reader->GetRescaleSlope(), intercept = reader->GetRescaleIntercept();
+    if (std::isfinite(slope) && std::isfinite(intercept) && slope != 0 && (slope != 1 || intercept != 0))
+      data.attributes = (slope * data.attributes.array() + intercept).matrix();
+  }
+  return data;
+}
+
+// VTK's legacy readers report values they could not read ("Error reading ascii data. Possible
+// mismatch of datasize with declaration.") as generic warnings, from functions that belong to no
+// object, so no observer sees them: they go to the output window. This one, installed for the
+// time of a read, keeps the first warning or error instead of printing it.
+class CapturingOutputWindow : public vtkOutputWindow {
+ public:
+  static CapturingOutputWindow* New();
+  vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow)
+  void DisplayText(const char*) override {}
+  void DisplayErrorText(const char* text) override { keep(text); }
+  void DisplayWarningText(const char* text) override { keep(text); }
+  void DisplayGenericWarningText(const char* text) override { keep(text); }
+  void DisplayDebugText(const char*) override {}
+  std::string first;
+
+ private:
+  void keep(const char* text) {
+    if (first.empty() && text) first = text;
+  }
+};
+vtkStandardNewMacro(CapturingOutputWindow)
+
+// Installs a CapturingOutputWindow, and silences VTK's logger on stderr (the macros log there
+// as well), until it goes; then both are as they were.
+class CapturedOutput {
+ public:
+  CapturedOutput() : previous_(vtkOutputWindow::GetInstance()), verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
+    vtkOutputWindow::SetInstance(window_);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~CapturedOutput() {
+    vtkLogger::SetStderrVerbosity(verbosity_);
+    vtkOutputWindow::SetInstance(previous_);
+  }
+  CapturedOutput(const CapturedOutput&) = delete;
+  CapturedOutput& operator=(const CapturedOutput&) = delete;
+  /// The first message, without VTK's "Generic Warning: In FILE, line N" line.
+  std::string first() const {
+    const std::string& m = window_->first;
+    const auto newline = m.find('\n');
+    std::string text = m.rfind("Generic Warning", 0) == 0 && newline != std::string::npos ? m.substr(newline + 1) : m;
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+    return text;
+  }
+
+ private:
+  vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkLogger::Verbosity verbosity_;
+  vtkNew<CapturingOutputWindow> window_;
+};
+
+// A legacy file is read by the reader of its DATASET type itself: vtkDataSetReader delegates to
+// one it makes inside, whose errors and warnings no observer of ours would see (a value that is
+// not a number, or fewer values than declared, were read as zeros: an audit found both).
+template <class Reader>
+VolumeData read_legacy_as(const std::string& source) {
+  VtkErrors errors;
+  errors.warnings_are_errors = true;
+  vtkNew<Reader> reader;
+  errors.watch(*reader);
+  reader->SetFileName(source.c_str());
+  reader->ReadAllScalarsOn();
+  reader->ReadAllVectorsOn();
+  reader->ReadAllTensorsOff();
+  {
+    const CapturedOutput output;
+    reader->Update();
+    if (errors.first.empty() && !output.first().empty()) {
+      errors.first = output.first();
+      if (errors.first.find("mismatch of datasize") != std::string::npos)
+        errors.first += " (expected as many numbers as the header declares: the file holds fewer, or one that is not a number)";
+    }
+  }
+  if (!errors.first.empty()) throw InvalidInput(vtk_message_text(errors.first), source);
+  vtkDataSet* set = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!set) throw InvalidInput("the VTK reader produced no dataset (expected a legacy VTK dataset)", source);
+  return from_dataset(set, source, nullptr);
+}
+
+VolumeData read_legacy(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  VtkErrors errors;
+  vtkNew<vtkDataSetReader> probe;
+  errors.watch(*probe);
+  probe->SetFileName(source.c_str());
+  switch (probe->ReadOutputType()) {
+    case VTK_POLY_DATA: return read_legacy_as<vtkPolyDataReader>(source);
+    case VTK_UNSTRUCTURED_GRID: return read_legacy_as<vtkUnstructuredGridReader>(source);
+    case VTK_STRUCTURED_POINTS:
+    case VTK_IMAGE_DATA: return read_legacy_as<vtkStructuredPointsReader>(source);
+    case VTK_STRUCTURED_GRID: return read_legacy_as<vtkStructuredGridReader>(source);
+    case VTK_RECTILINEAR_GRID: return read_legacy_as<vtkRectilinearGridReader>(source);
+    default: break;
+  }
+  throw InvalidInput(errors.first.empty() ? std::string("not a legacy VTK dataset (expected a DATASET line naming POLYDATA, "
+                                                        "UNSTRUCTURED_GRID, STRUCTURED_POINTS, STRUCTURED_GRID or RECTILINEAR_GRID)")
+                                          : vtk_message_text(errors.first),
+                     source);
 }
 
 }  // namespace
@@ -100,8 +211,8 @@ VolumeData read_vtk_volume_data(const std::filesystem::path& path, const std::st
   if (!std::ifstream(path, std::ios::binary)) throw IoError("cannot open " + path.string());
   if (extension == ".vtu") return read_with<vtkXMLUnstructuredGridReader>(path, "a VTK XML unstructured grid (VTKFile type=\"UnstructuredGrid\")");
   if (extension == ".vti") return read_with<vtkXMLImageDataReader>(path, "a VTK XML image (VTKFile type=\"ImageData\")");
-  if (extension == ".nii") return read_with<vtkNIFTIImageReader>(path, "a NIfTI-1 image");
-  return read_with<vtkDataSetReader>(path, "a legacy VTK dataset");
+  if (extension == ".nii") return read_with<vtkNIFTIImageReader>(path, "a NIfTI-1 image (.nii or .nii.gz)");
+  return read_legacy(path);
 }
 
 }  // namespace volspline::detail

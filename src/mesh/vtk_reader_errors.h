@@ -18,9 +18,13 @@ namespace volspline::detail {
 
 struct VtkErrors {
   std::string first;
+  /// Warnings count as errors too: the legacy readers warn ("Error reading ascii data. Possible
+  /// mismatch of datasize with declaration.") where values are missing and carry on with zeros.
+  bool warnings_are_errors = false;
   static void collect(vtkObject*, unsigned long event, void* client, void* call) {
     auto* self = static_cast<VtkErrors*>(client);
-    if (event == vtkCommand::ErrorEvent && self->first.empty() && call) self->first = static_cast<const char*>(call);
+    const bool counts = event == vtkCommand::ErrorEvent || (self->warnings_are_errors && event == vtkCommand::WarningEvent);
+    if (counts && self->first.empty() && call) self->first = static_cast<const char*>(call);
   }
   VtkErrors() {
     observer->SetCallback(&VtkErrors::collect);

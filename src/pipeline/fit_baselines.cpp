@@ -210,8 +210,8 @@ std::vector<MethodError> compare_volume_fits(const VolumeData& data, const DmsSp
     candidates.push_back({"trilinear interpolation", data.size(), 0, [shared](const Eigen::Vector3d& x) { return shared->trilinear(x); }});
     candidates.push_back({"nearest node", data.size(), 0, [shared](const Eigen::Vector3d& x) { return shared->nearest(x); }});
   }
-  // The comparison points: inside the simplex spline's domain, so every method is measured on
-  // the same set.
+  // The points against the truth: random, inside the simplex spline's domain, so every method
+  // is measured on the same set.
   const DataBox box = data_box_of(data.points);
   std::vector<Eigen::Vector3d> truth_points;
   if (options.truth) {
@@ -233,18 +233,20 @@ std::vector<MethodError> compare_volume_fits(const VolumeData& data, const DmsSp
     }
   std::vector<Eigen::VectorXd> truth(truth_points.size());
   for (std::size_t i = 0; i < truth_points.size(); ++i) truth[i] = options.truth(truth_points[i]);
+  // Every method is measured at the same data points: those in the simplex spline's domain (a
+  // point it does not fit is left out for all, not only for it).
+  std::vector<char> in_domain(data.size());
+  std::size_t compared = 0;
+  for (std::size_t s = 0; s < data.size(); ++s) compared += (in_domain[s] = evaluator.evaluate(data.points[s]).inside ? 1 : 0);
   std::vector<MethodError> out;
   for (const FitCandidate& candidate : candidates) {
     std::vector<MethodError> errors(attributes);
     for (std::size_t a = 0; a < attributes; ++a) errors[a] = {candidate.name, data.attribute_names[a], candidate.coefficients};
-    std::size_t compared = 0;
     std::vector<Eigen::VectorXd> values(data.size());
+    for (std::size_t s = 0; s < data.size(); ++s)
+      if (in_domain[s]) values[s] = candidate.evaluate(data.points[s]);
     for (std::size_t s = 0; s < data.size(); ++s) {
-      values[s] = candidate.evaluate(data.points[s]);
-      if (!std::isnan(values[s][0])) ++compared;
-    }
-    for (std::size_t s = 0; s < data.size(); ++s) {
-      if (std::isnan(values[s][0])) continue;
+      if (!in_domain[s]) continue;
       for (std::size_t a = 0; a < attributes; ++a)
         add_errors(errors[a], values[s][static_cast<Eigen::Index>(a)] - data.attributes(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(a)),
                    1.0 / static_cast<double>(compared));
@@ -264,6 +266,7 @@ std::vector<MethodError> compare_volume_fits(const VolumeData& data, const DmsSp
       e.normalised_truth_mean_square = e.truth_mean_square / (range * range);
       e.normalised_truth_max_abs = e.truth_max_abs / range;
       e.seconds = candidate.seconds;
+      e.data_points = compared;
       out.push_back(e);
     }
   }

@@ -230,5 +230,41 @@ TEST_F(FitCli, BaselinesAreFittedToTheSameDataAndCompared) {
   for (const auto& row : ml["baselines"]) EXPECT_GT(row["truth_mean_square"].get<double>(), 0.0) << row["method"];
 }
 
+// Points in a ball, few primary knots: the domain (their Delaunay tetrahedra) misses some data.
+// The command says so on stderr with the count, the statistics carry it, and the baselines are
+// measured at the points the simplex spline fits (the tensor product's row counts no other).
+TEST_F(FitCli, DataOutsideTheDomainIsReportedAndLeftOutOfEveryMethodsErrors) {
+  std::ofstream csv(path("ball.csv"));
+  csv.precision(17);
+  csv << "x,y,z,f\n";
+  unsigned state = 12345;
+  auto next = [&] {
+    state = state * 1103515245u + 12345u;
+    return static_cast<double>((state >> 8) & 0xffff) / 65535.0 * 2 - 1;
+  };
+  int written = 0;
+  while (written < 600) {
+    const double x = next(), y = next(), z = next();
+    if (x * x + y * y + z * z > 1) continue;
+    csv << x << "," << y << "," << z << "," << x + y * z << "\n";
+    ++written;
+  }
+  csv.close();
+  const auto r = run("fit " + path("ball.csv") + " --degree 1 --primary-knots 30 --baselines --stats " + path("s.json") + " -o " + path("m.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json s = nlohmann::json::parse(std::ifstream(path("s.json")));
+  const auto outside = s["outside_points"].get<int>();
+  ASSERT_GT(outside, 0);
+  EXPECT_NE(r.err.find("warning: " + std::to_string(outside) + " of 600 data points"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("lie outside the domain"), std::string::npos) << r.err;
+  // The simplex spline's row is its fit's own error (over the points it fits), and the tensor
+  // product, measured at the same points, keeps its error there below its largest anywhere.
+  const auto& rows = s["baselines"];
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_NEAR(rows[0]["data_mean_square"].get<double>(), s["field_errors"][0]["mean_square"].get<double>(), 1e-12);
+  EXPECT_NEAR(rows[0]["data_max_abs"].get<double>(), s["field_errors"][0]["max_abs"].get<double>(), 1e-12);
+  for (const auto& row : rows) EXPECT_EQ(row["data_points"].get<int>(), 600 - outside) << row["method"];
+}
+
 }  // namespace
 }  // namespace volspline

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -202,6 +203,47 @@ TEST(VolumeData, NiftiVoxelSizeBecomesTheSpacing) {
       EXPECT_EQ(d.points[v], Eigen::Vector3d(0.5 * i, 2 * j, 0));
       EXPECT_EQ(d.attributes(static_cast<Eigen::Index>(v), 0), static_cast<double>(v * v));
     }
+
+  // scl_slope 2 and scl_inter 1 scale the values (CT images store Hounsfield units so); a qform
+  // (code 1, no rotation) offsets the voxel centres by its qoffset; gzip-compressed alike.
+  put(112, 2.0f);
+  put(116, 1.0f);
+  put(252, std::int16_t{1});  // qform_code
+  put(268, 10.0f);
+  put(272, 20.0f);
+  put(276, 30.0f);
+  write_bytes(dir / "b.nii", bytes);
+  ASSERT_EQ(std::system(("gzip -c " + (dir / "b.nii").string() + " > " + (dir / "b.nii.gz").string()).c_str()), 0);
+  for (const char* name : {"b.nii", "b.nii.gz"}) {
+    const VolumeData scaled = read_volume_data(dir / name);
+    ASSERT_EQ(scaled.size(), 6u) << name;
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 3; ++i) {
+        const auto v = static_cast<std::size_t>(i + 3 * j);
+        EXPECT_EQ(scaled.points[v], Eigen::Vector3d(10 + 0.5 * i, 20 + 2 * j, 30)) << name;
+        EXPECT_EQ(scaled.attributes(static_cast<Eigen::Index>(v), 0), 2.0 * static_cast<double>(v * v) + 1) << name;
+      }
+  }
+  write_bytes(dir / "c.txt.gz", "x");
+  EXPECT_NE(error_of([&] { read_volume_data(dir / "c.txt.gz"); }).find("unknown volume data format .gz"), std::string::npos);
+}
+
+// Legacy files with fewer values than declared, or a value that is not a number: VTK's legacy
+// readers warn or complain and go on with zeros; the file is refused, named.
+TEST(VolumeData, DamagedLegacyVtkFilesAreRefused) {
+  TemporaryDirectory dir;
+  const std::string header = "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 5 float\n0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\n";
+  write_bytes(dir / "short.vtk", header + "POINT_DATA 5\nSCALARS d float 1\nLOOKUP_TABLE default\n1 2 3\n");
+  write_bytes(dir / "word.vtk", header + "POINT_DATA 5\nSCALARS d float 1\nLOOKUP_TABLE default\n1 2 abc 4 5\n");
+  write_bytes(dir / "points.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0\n");
+  write_bytes(dir / "kind.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET NOTHING\n");
+  write_bytes(dir / "good.vtk", header + "POINT_DATA 5\nSCALARS d float 1\nLOOKUP_TABLE default\n1 2 3 4 5\n");
+  for (const char* name : {"short.vtk", "word.vtk", "points.vtk", "kind.vtk"})
+    EXPECT_NE(error_of([&] { read_volume_data(dir / name); }).find(name), std::string::npos) << name;
+  const VolumeData good = read_volume_data(dir / "good.vtk");
+  ASSERT_EQ(good.size(), 5u);
+  EXPECT_EQ(good.attributes(4, 0), 5);
+  EXPECT_EQ(good.points[4], Eigen::Vector3d(1, 1, 1));
 }
 
 TEST(VolumeData, FireUnstructuredGridHasItsPointsAndFields) {

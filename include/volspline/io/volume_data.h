@@ -60,7 +60,9 @@ VolumeData parse_volume_ply(std::string_view bytes, const std::string& source);
 VolumeData parse_inrimage(std::string_view bytes, const std::string& source);
 
 /// Reads a volume data file by its extension: .csv, .ply, .inr, .vtu (VTK XML unstructured
-/// grid), .vti (VTK XML image data), .vtk (legacy VTK: any dataset with points), .nii (NIfTI-1).
+/// grid), .vti (VTK XML image data), .vtk (legacy VTK: any dataset with points; values missing
+/// or not numbers are refused, not read as zeros), .nii or .nii.gz (NIfTI-1: the voxel-to-world
+/// map of the sform, else the qform; values scaled by scl_slope and scl_inter where set).
 /// VTK point data arrays become attributes (one per component: NAME, or NAME_0, NAME_1, ... for
 /// vectors); images give their voxel centres, origin and spacing respected.
 /// \throw IoError if the file cannot be opened; InvalidInput naming the file and the place.

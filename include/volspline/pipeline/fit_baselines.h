@@ -69,8 +69,10 @@ struct MethodError {
   std::string attribute;
   /// Coefficients the method stores for this attribute (data values for the interpolants).
   std::size_t coefficients = 0;
-  /// At the data points (the simplex spline: at those inside its domain).
+  /// At the data points inside the simplex spline's domain (every method at the same ones), and
+  /// how many those are.
   double data_mean_square = 0, data_max_abs = 0;
+  std::size_t data_points = 0;
   double normalised_data_mean_square = 0, normalised_data_max_abs = 0;
   /// Against the true function at the comparison points (NaN without one).
   double truth_mean_square = 0, truth_max_abs = 0;
@@ -92,7 +94,8 @@ struct FitComparisonOptions {
 /// The simplex spline `volume` (fitted to `data`) and the baselines, fitted to the same data now:
 /// "dms simplex spline", "tensor-product least squares" (as many coefficients as the simplex
 /// spline has control points), and for grid data "trilinear" and "nearest". One entry per method
-/// and attribute, in that order.
+/// and attribute, in that order. Errors at the data are taken at the data points inside the
+/// simplex spline's domain for every method alike (the tensor product too).
 /// \throw InvalidInput for data whose attributes the volume lacks; as fit_tensor_product_volume.
 std::vector<MethodError> compare_volume_fits(const VolumeData& data, const DmsSplineVolume& volume,
                                              const FitComparisonOptions& options = {});
