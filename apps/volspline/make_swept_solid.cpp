@@ -37,10 +37,17 @@ std::pair<std::vector<BSplineVolume>, std::vector<std::string>> generator_patche
   return {std::move(patches), std::move(locations)};
 }
 
-std::vector<BSplineCurve> curves_of(const std::string& file) {
+// The curve objects of a path or frame file, which must hold curves only (an object of another
+// kind is refused by its place, not passed over).
+std::vector<BSplineCurve> curves_of(const std::string& file, const std::string& option) {
   std::vector<BSplineCurve> curves;
-  for (const auto& object : read_model(file).objects)
-    if (const auto* c = std::get_if<BSplineCurve>(&object.spline)) curves.push_back(*c);
+  const Model model = read_model(file);
+  for (std::size_t i = 0; i < model.objects.size(); ++i) {
+    if (const auto* c = std::get_if<BSplineCurve>(&model.objects[i].spline)) curves.push_back(*c);
+    else throw InvalidInput(object_location(file, i) + " is not a curve (bspline_curve or bezier_curve): a " +
+                                (option == "--path" ? "path file holds one curve" : "frame file holds three curves, b, n, t"),
+                            option);
+  }
   return curves;
 }
 
@@ -64,7 +71,7 @@ SweptSolidFrame parse_frame(const std::string& text) {
     return frame;
   }
   frame.kind = SweptSolidFrame::Kind::Curves;
-  frame.curves = curves_of(text);
+  frame.curves = curves_of(text, "--frame");
   if (frame.curves.size() != 3)
     throw InvalidInput(text + " has " + std::to_string(frame.curves.size()) +
                            " curve object(s); a frame file has exactly 3 (b, n, t: the columns of R(t))",
@@ -78,8 +85,10 @@ void make_swept_solid_file(const SweptSolidRequest& r) {
   auto generator = generator_patches(r.generator);
   auto& patches = generator.first;
   const auto& locations = generator.second;
-  const std::vector<BSplineCurve> path_curves = curves_of(r.path);
-  if (path_curves.empty()) throw InvalidInput(r.path + " has no curve object (bspline_curve or bezier_curve)", "--path");
+  const std::vector<BSplineCurve> path_curves = curves_of(r.path, "--path");
+  if (path_curves.size() != 1)
+    throw InvalidInput(r.path + " has " + std::to_string(path_curves.size()) + " curve objects; a path file holds exactly one (the trajectory c(t))",
+                       "--path");
   const SweptSolidFrame frame = parse_frame(r.frame);
   const std::size_t count = patches.size();
   SweptSolid solid = [&] {
@@ -94,6 +103,9 @@ void make_swept_solid_file(const SweptSolidRequest& r) {
       }
       if (where.rfind("path", 0) == 0) throw InvalidInput(e.message(), "--path " + r.path);
       if (where.rfind("frame", 0) == 0) throw InvalidInput(e.message(), "--frame " + r.frame);
+      // The frames computed from the path (Frenet, rotation-minimising) fail on the path.
+      if (where.empty() && (frame.kind == SweptSolidFrame::Kind::Frenet || frame.kind == SweptSolidFrame::Kind::RotationMinimizing))
+        throw InvalidInput(e.message(), "--frame " + r.frame + " on --path " + r.path);
       throw;
     }
   }();
@@ -114,7 +126,7 @@ void add_make_swept_solid_kind(CLI::App* make) {
   auto* cmd = make->add_subcommand("swept-solid", "Sweep a generator solid along a path with a moving frame, s = c(t) + R(t) g(u,v,w) "
                                                   "(Conkey-Joy 2000): a swept_solid object of 4-variate patches");
   cmd->add_option("--generator", r->generator, "model file; every volume object is a generator patch")->required();
-  cmd->add_option("--path", r->path, "model file; its first curve is the trajectory c(t)")->required();
+  cmd->add_option("--path", r->path, "model file holding one curve: the trajectory c(t)")->required();
   cmd->add_option("--frame", r->frame,
                   "fixed (default), frenet, rmf (fitted; prints the fit error), rotate:AX,AY,AZ:DEGREES (exact turn by DEGREES * t "
                   "at arc ends), or a model file whose three curves are b, n, t (the columns of R(t))");

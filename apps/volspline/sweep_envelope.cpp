@@ -169,12 +169,15 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   bool open = false, beyond_tolerance = false, adaptation_refused = false, tags_off = false;
   std::size_t solids = 0;
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
-    if (!is_swept_solid(model.objects[i])) continue;
+    // A swept solid, or a 4-variate spline given as it is (its image is the swept volume).
+    std::vector<BSplineHypervolume> maps;
+    if (is_swept_solid(model.objects[i])) maps = swept_patches(std::get<SweptSolid>(model.objects[i].spline));
+    else if (const auto* h = std::get_if<BSplineHypervolume>(&model.objects[i].spline)) maps.push_back(*h);
+    else continue;
     ++solids;
-    const SweptSolid& solid = std::get<SweptSolid>(model.objects[i].spline);
     const SweptEnvelope e = [&] {
       try {
-        return swept_envelope(swept_patches(solid), options);
+        return swept_envelope(maps, options);
       } catch (const InvalidInput& error) {
         throw InvalidInput(std::string(error.what()), object_location(a.input->path, i));
       }
@@ -211,7 +214,7 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
       if (t.grid_adaptation_refused) adaptation_refused = true;
       // Adaptive cells by default (kAutomaticRatio) or as asked; the coarse grid of --coarse-cells.
       const bool adaptive = options.coarse_cell_factor == 0 && options.adaptive_ratio != 0;
-      if (options.coarse_cell_factor > 0 || adaptive) {
+      if (e.stats.trimmed_by == EnvelopeTrimming::Contouring && (options.coarse_cell_factor > 0 || adaptive)) {
         if (t.grid_passes == 2)
           std::cout << "; the " << (adaptive ? "adaptive cells were" : "coarse grid was") << " not kept ("
                     << t.coarse_grid_rejected << ")";
@@ -228,7 +231,8 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
     if (!t.open_at.empty()) std::cout << "  open at " << t.open_at << "\n";
   }
   if (solids == 0)
-    throw InvalidInput(a.input->path + " has no swept_solid object (make one with `volspline make swept-solid`)", "objects");
+    throw InvalidInput(a.input->path + " has no swept_solid or bspline_hypervolume object (make one with `volspline make swept-solid`)",
+                       "objects");
   // A cut-open picture: the part where normal·x > offset is left out of the picture only
   // (Conkey–Joy's superset shows its sheets inside the swept volume, the trimmed result is a shell).
   const std::optional<TriangleMesh> shown = cut ? std::optional(remove_convex_region(mesh, {*cut})) : std::nullopt;

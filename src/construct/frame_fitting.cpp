@@ -69,7 +69,7 @@ void require_frenet_frame(const BSplineCurve& path) {
   for (std::size_t i = 1; i < samples.size(); ++i) {
     const Matrix3d f = frenet_frame(path, samples[i]);
     if (f.col(1).dot(previous.col(1)) < 0.0 || f.col(2).dot(previous.col(2)) < 0.0)
-      throw InvalidInput("the sweep path's curvature vanishes between w = " + format_double(samples[i - 1]) + " and " +
+      throw InvalidInput("the sweep path's curvature vanishes between its parameters " + format_double(samples[i - 1]) + " and " +
                          format_double(samples[i]) + ": the Frenet frame is undefined there");
     previous = f;
   }

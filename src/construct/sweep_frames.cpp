@@ -74,7 +74,7 @@ Matrix3d frenet_frame(const BSplineCurve& path, double t) {
   const double curvature = cross.norm() / std::pow(d[1].norm(), 3);
   // Curvature times the path's size: dimensionless, so the test does not depend on scale.
   if (!(curvature * length_scale(path) > 1e-9))
-    throw InvalidInput("the sweep path's curvature vanishes at w = " + format_double(t) + ": the Frenet frame is undefined there");
+    throw InvalidInput("the sweep path's curvature vanishes at its parameter " + format_double(t) + ": the Frenet frame is undefined there");
   Matrix3d r;
   r.col(2) = d[1].normalized();
   r.col(1) = cross.normalized();

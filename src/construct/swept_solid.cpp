@@ -10,9 +10,11 @@
 
 #include "path_geometry.h"
 #include "piecewise_bernstein.h"
+#include "volspline/analysis/jacobian_bezier.h"
 #include "volspline/construct/sweep.h"
 #include "volspline/core/error.h"
 #include "volspline/core/format.h"
+#include "volspline/spline/bezier_extraction.h"
 #include "volspline/spline/reparameterization.h"
 
 namespace volspline {
@@ -183,11 +185,40 @@ int require_nonsingular_frame(const std::array<BSplineCurve, 3>& frame) {
   return sign.sign;
 }
 
+// A generator patch whose Jacobian vanishes identically (all its points in a plane or on a curve)
+// is no volume: its sweep has no interior and the envelope's superset is undefined (Conkey–Joy
+// §3 assume a solid). Certified on the Bernstein coefficients of J (or w^4 J) of every Bézier
+// piece: all within their rounding bound of zero (and of 1e-12 of the box's size cubed, times
+// the largest weight to the fourth for rational patches, over the domain's volume).
+bool jacobian_vanishes_identically(const BSplineVolume& patch) {
+  Eigen::AlignedBox3d box;
+  const auto& p = patch.points();
+  for (std::size_t i = 0; i + 2 < p.size(); i += 3) box.extend(Eigen::Vector3d(p[i], p[i + 1], p[i + 2]));
+  double weight = 1;
+  for (double w : patch.weights()) weight = std::max(weight, std::abs(w));
+  const double size = box.diagonal().norm();
+  // J is taken with respect to the patch's own parameters: a domain of length L per direction
+  // scales it by 1 / (L_u L_v L_w).
+  double lengths = 1;
+  for (int d = 0; d < 3; ++d) lengths *= patch.domain_max(d) - patch.domain_min(d);
+  const double input_error = extraction_error_bound(patch);
+  for (const BSplineVolume& piece : bezier_pieces(patch)) {
+    const JacobianBernstein j = jacobian_bezier_coefficients(piece, input_error);
+    const double floor = std::max(j.error_bound, 1e-12 * size * size * size * std::pow(weight, 4) / lengths);
+    for (double c : j.coefficients.coefficients)
+      if (std::abs(c) > floor) return false;
+  }
+  return true;
+}
+
 SweptSolid make_swept_solid(std::vector<BSplineVolume> generator, BSplineCurve path, const SweptSolidFrame& frame) {
   if (generator.empty()) throw InvalidInput("expected at least one generator patch, got none", "generator");
   for (std::size_t i = 0; i < generator.size(); ++i) {
     try {
       require_dimension(generator[i].dimension(), "a generator patch");
+      if (jacobian_vanishes_identically(generator[i]))
+        throw InvalidInput("a generator patch must be a volume; this one's Jacobian vanishes identically (its points lie in a plane or "
+                           "on a curve)");
     } catch (const InvalidInput& e) {
       throw e.located("generator[" + std::to_string(i) + "]");
     }

@@ -87,7 +87,20 @@ TEST_F(MakeSweptSolidCli, FittedFramesPrintTheirErrorAndFrameFilesAreUsedAsGiven
 TEST_F(MakeSweptSolidCli, BadInputExitsWithTwoNamingTheFile) {
   const std::string g = " --generator " + path("torus.json"), c = " --path " + path("line.json");
   expect_bad("--generator " + path("line.json") + c, "line.json has no volume object");
-  expect_bad(g + " --path " + path("torus.json"), "torus.json has no curve object");
+  expect_bad(g + " --path " + path("torus.json"), "torus.json: objects[0] is not a curve");
+  expect_bad(g + " --path " + write("two-paths.json", line_path(Vector3d::Zero(), Vector3d::UnitX()), line_path(Vector3d::Zero(), Vector3d::UnitY())),
+             "has 2 curve objects; a path file holds exactly one");
+  expect_bad(g + c + " --frame " + path("torus.json"), "torus.json: objects[0] is not a curve");
+  expect_bad(g + c + " --frame frenet", "--frame frenet on --path " + path("line.json"));
+  // A generator that is no volume: a unit box flattened into the plane z = 0.
+  {
+    std::vector<double> points;
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) points.insert(points.end(), {double(i), double(j), 0.0});
+    expect_bad("--generator " + write("flat-box.json", BSplineVolume({KnotVector::bezier(1), KnotVector::bezier(1), KnotVector::bezier(1)}, 3, points)) + c,
+               "flat-box.json: objects[0]: a generator patch must be a volume; this one's Jacobian vanishes identically");
+  }
   expect_bad(g + " --path " + write("flat.json", BSplineCurve({KnotVector::bezier(1)}, 2, {0, 0, 1, 1})), "--path " + path("flat.json"));
   expect_bad("--generator " + write("flat-volume.json", BSplineVolume({KnotVector::bezier(1), KnotVector::bezier(1), KnotVector::bezier(1)}, 2,
                                                                       std::vector<double>(16, 0.5))) + c,

@@ -69,6 +69,24 @@ TEST_F(SweepEnvelopeCli, TrimmedTranslatedBoxIsItsClosedHull) {
     EXPECT_NEAR((Eigen::Vector3d(x[0], x[1], x[2]) - Eigen::Vector3d(values[0], values[1], values[2])).norm(), 0, 1e-9) << v;
   }
 
+  // Trimmed by the arrangement: no contouring summary.
+  EXPECT_EQ(r.out.find("coarse cells refined"), std::string::npos) << r.out;
+
+  // A bare 4-variate spline (a bezier_hypervolume object): its image is the swept volume, here
+  // the unit cube moved by 2 along x as the fourth parameter goes from 0 to 1: volume 3.
+  {
+    std::ofstream hv(path("hv.json"));
+    hv << R"({"volspline": 1, "objects": [{"type": "bezier_hypervolume", "degree": [1,1,1,1], "control_points": [)"
+          R"([0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],[1,1,1],)"
+          R"([2,0,0],[3,0,0],[2,1,0],[3,1,0],[2,0,1],[3,0,1],[2,1,1],[3,1,1]]}]})";
+  }
+  const auto h = test_support::run_cli("sweep-envelope " + path("hv.json") + " -o " + path("hv.ply") + " --stats " + path("hv-s.json"), tmp.path());
+  ASSERT_EQ(h.code, 0) << h.err;
+  std::ifstream hv_stats(path("hv-s.json"));
+  const auto hs = nlohmann::json::parse(hv_stats);
+  EXPECT_NEAR(hs["objects"][0]["volume"].get<double>(), 3.0, 1e-9);
+  EXPECT_TRUE(hs["objects"][0]["closed"].get<bool>());
+
   const auto s = test_support::run_cli("sweep-envelope " + example("swept-translated-box.json") + " -o " + path("superset.ply") +
                                        " --superset",
                                        tmp.path());

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "support/test_splines.h"
+#include "volspline/construct/primitives.h"
 #include "volspline/construct/swept_examples.h"
 #include "volspline/core/error.h"
 #include "volspline/io/model_file.h"
@@ -231,6 +232,21 @@ TEST(SweptSolid, InputsThatAreNot3dAreRefused) {
   EXPECT_EQ(where({folded_cube()}, path, curves_frame({path, random_spline<1>(rng, {2}, 2, 4, false), path})), "frame.curves[1]");
   EXPECT_EQ(where({folded_cube()}, path, rotation(Vector3d::Zero(), 90.0)), "frame.rotate.axis");
   EXPECT_THROW(swept_patch(translated_box(Vector3d::Ones(), Vector3d::UnitX()), 1), InvalidInput);
+  // A generator that is no volume: the box flattened into z = 0 (J = 0 everywhere); a patch
+  // whose J vanishes only on a face (the cylinder's axis, a rational patch) and a tiny box are
+  // volumes.
+  BSplineVolume flat = box(Vector3d::Ones());
+  std::vector<double> points = flat.points();
+  for (std::size_t i = 2; i < points.size(); i += 3) points[i] = 0;
+  const BSplineVolume flattened({flat.knot_vector(0), flat.knot_vector(1), flat.knot_vector(2)}, 3, points);
+  EXPECT_EQ(where({folded_cube(), flattened}, path, {}), "generator[1]");
+  try {
+    make_swept_solid({flattened}, path, {});
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(e.message().find("Jacobian vanishes identically"), std::string::npos) << e.message();
+  }
+  EXPECT_NO_THROW(make_swept_solid({cylinder(1, 2)}, path, {}));
+  EXPECT_NO_THROW(make_swept_solid({box(Vector3d::Constant(1e-3))}, path, {}));
 }
 
 TEST(SweptExamples, GeneratorsHaveTheShapesTheyClaim) {
