@@ -66,7 +66,11 @@ std::vector<std::string> split_names(const std::string& list) {
   std::size_t start = 0;
   while (start <= list.size() && !list.empty()) {
     const std::size_t comma = std::min(list.find(',', start), list.size());
-    names.push_back(list.substr(start, comma - start));
+    // "t, u" as "t,u": names are taken without the spaces around them.
+    std::string name = list.substr(start, comma - start);
+    name.erase(0, name.find_first_not_of(" \t"));
+    name.erase(name.find_last_not_of(" \t") + 1);
+    names.push_back(name);
     start = comma + 1;
   }
   return names;

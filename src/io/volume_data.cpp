@@ -112,6 +112,8 @@ void validate_volume_data(const VolumeData& data, const std::string& source) {
 }
 
 VolumeData parse_volume_csv(std::string_view text, const std::string& source) {
+  // A UTF-8 byte order mark, as spreadsheets write before the header, is not part of a name.
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   std::vector<std::string> header;
   std::array<int, 3> xyz{-1, -1, -1};
   std::vector<int> attribute_fields;
@@ -161,7 +163,10 @@ VolumeData parse_volume_csv(std::string_view text, const std::string& source) {
                          where);
     std::vector<double> row(fields.size());
     for (std::size_t f = 0; f < fields.size(); ++f) {
-      const std::optional<double> v = detail::parse_double(fields[f]);
+      // A number in quotes (spreadsheets quote fields) is the number.
+      std::string_view field = fields[f];
+      if (field.size() >= 2 && field.front() == '"' && field.back() == '"') field = trim(field.substr(1, field.size() - 2));
+      const std::optional<double> v = detail::parse_double(field);
       if (!v)
         throw InvalidInput("column '" + header[f] + "': expected a finite number, got " + detail::quoted_token(fields[f]), where);
       row[f] = *v;

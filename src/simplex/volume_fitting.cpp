@@ -500,15 +500,18 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     std::optional<DmsSplineVolume> volume;
     VolumeFitErrors errors;
   };
+  // `within`: the phase a build belongs to (knot placement's fits), shown before its own steps so
+  // that progress says "placement 2: domain", not "domain" again (28 characters show).
   const auto build = [&](const PointCloudDomainOptions& domain_with, const VolumeData& to_fit, const ControlVectorFitOptions& fit_with,
-                         std::vector<FitPhase>* phases) {
+                         std::vector<FitPhase>* phases, const std::string& within = "") {
+    const auto step = [&](const std::string& phase) { announce(within.empty() ? phase : within + ": " + phase); };
     Built b;
-    announce("domain");
+    step("domain");
     const auto start = std::chrono::steady_clock::now();
     b.domain = point_cloud_domain(data.points, domain_with);
     if (phases) phases->push_back({"domain", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
     if (options.jump > 0) {
-      announce("sharp features");
+      step("sharp features");
       const auto split_start = std::chrono::steady_clock::now();
       b.own_side = split_domain_at_jump(b.domain, to_fit, options.jump, b.sharp);
       if (phases) phases->push_back({"sharp features", std::chrono::duration<double>(std::chrono::steady_clock::now() - split_start).count()});
@@ -521,7 +524,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
     KnotClouds clouds = generate_knot_clouds(b.domain.mesh, options.degree, cloud_options);
     if (phases) phases->push_back({"knot clouds", std::chrono::duration<double>(std::chrono::steady_clock::now() - clouds_start).count()});
     b.volume.emplace(std::move(b.domain.mesh), std::move(clouds), DmsControlSharing::Shared);
-    announce("least squares");
+    step("least squares");
     b.errors = fit_control_vectors(*b.volume, b.own_side ? *b.own_side : to_fit, fit_with, phases);
     return b;
   };
@@ -549,7 +552,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
         // The kept layout's final fit is faired the same way.
         ControlVectorFitOptions judging = fit_options;
         judging.fairing = std::max(judging.fairing, kPlacementFairing);
-        Built current = build(domain_options, training, judging, nullptr);
+        Built current = build(domain_options, training, judging, nullptr, "placement");
         placement.held_out_before = mean_normalised_field_error(volume_fit_errors(*current.volume, held_out));
         placement.held_out_after = placement.held_out_before;
         PointCloudDomainOptions best = domain_options;
@@ -564,7 +567,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
           bool made = false;
           for (int temper = 0; temper < 3 && !made; ++temper) {
             try {
-              current = build(placed, training, judging, nullptr);
+              current = build(placed, training, judging, nullptr, "placement " + std::to_string(round + 1));
               made = true;
             } catch (const InvalidInput&) {
               ++placement.failed;
@@ -582,7 +585,7 @@ VolumeFit fit_volume_data(const VolumeData& data, const VolumeFitOptions& option
         if (placement.kept > 0) {
           // Faired like the fits that chose it: the larger tetrahedra of a placed layout ring
           // without (measured: docs/fitting.md, "Knot placement").
-          built = build(best, data, judging, nullptr);
+          built = build(best, data, judging, nullptr, "placement, kept");
           placement.fairing = judging.fairing;
           domain_options = std::move(best);
           placement.after = mean_normalised_field_error(built.errors);

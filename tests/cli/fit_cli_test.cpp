@@ -75,7 +75,9 @@ TEST_F(FitCli, FitsAndTheResultOpensInEvalXrayViewAndConvert) {
 TEST_F(FitCli, SeveralAttributesGetTableOnesFieldErrorTheirMean) {
   // Table 1 gives one field error per data set: with several attributes, their mean normalised
   // mean square (what placement and refinement minimise), beside each attribute's own.
-  const auto r = run("fit " + path("data.csv") + " --degree 1 --primary-knots 30 --stats " + path("s.json") + " -o " + path("m.json"));
+  // (--attributes as a user types it, with spaces after the comma.)
+  const auto r = run("fit " + path("data.csv") + " --attributes 'temperature, other' --degree 1 --primary-knots 30 --stats " + path("s.json") +
+                     " -o " + path("m.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("mean over 2 attributes"), std::string::npos) << r.out;
   std::ifstream stats_file(path("s.json"));

@@ -55,6 +55,13 @@ TEST(VolumeData, CsvColumnsInAnyOrderBecomePointsAndAttributes) {
   const VolumeData t = select_attributes(d, {"temperature"});
   EXPECT_EQ(t.attribute_names, std::vector<std::string>{"temperature"});
   EXPECT_EQ(t.attributes(0, 0), -4);
+  // A spreadsheet's export: a UTF-8 byte order mark before the header, quoted names and numbers.
+  const VolumeData q = parse_volume_csv("\xEF\xBB\xBF\"x\",\"y\",\"z\",\"t\"\n\"1\",\" 2 \",3,\"4.5\"\n", "q.csv");
+  ASSERT_EQ(q.size(), 1u);
+  EXPECT_EQ(q.points[0], Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(q.attribute_names, std::vector<std::string>{"t"});
+  EXPECT_EQ(q.attributes(0, 0), 4.5);
+  EXPECT_NE(error_of([] { parse_volume_csv("x,y,z\n\"1\",\"two\",3\n", "w.csv"); }).find("column 'y'"), std::string::npos);
 }
 
 TEST(VolumeData, CsvErrorsNameTheLineAndTheColumn) {
