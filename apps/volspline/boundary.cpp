@@ -178,6 +178,7 @@ void run_boundary(const BoundaryArguments& a) {
     throw InvalidInput(a.input->path + " has no simplex_spline_volume object to sample", "--iso-edge");
   const bool several = count_volumes(model) + simplex_volumes > 1;
   TriangleMesh mesh;
+  PlyVertexProperty trimmed_vertex_objects;
   nlohmann::json stats = {{"objects", nlohmann::json::array()}};
   if (simplex_volumes > 0) stats["simplex_objects"] = nlohmann::json::array();
   for (std::size_t i = 0; i < model.objects.size(); ++i)
@@ -217,6 +218,10 @@ void run_boundary(const BoundaryArguments& a) {
       contouring.progress = options.progress;
       const TrimmedSolidBoundary t = trimmed_solid_boundary(trimmed_volumes, options, contouring);
       mesh.append(t.mesh);
+      // Per vertex, the model object whose (u, v, w) it carries (a PLY property after w).
+      trimmed_vertex_objects.name = "object";
+      trimmed_vertex_objects.integer = true;
+      for (const int v : t.volumes) trimmed_vertex_objects.values.push_back(static_cast<double>(trimmed_objects[static_cast<std::size_t>(v)]));
       const SupersetTrimmingStats& ts = t.stats;
       stats["objects"].push_back({{"objects", trimmed_objects},
                                   {"superset_triangles", t.superset_triangles},
@@ -240,6 +245,8 @@ void run_boundary(const BoundaryArguments& a) {
                                   {"components", ts.components},
                                   {"volume", ts.volume},
                                   {"seconds", {{"grid", ts.seconds_refine}, {"classify", ts.seconds_classify}, {"checks", ts.seconds_checks}}}});
+      // One volume: also "object", the key of the statistics before volumes were trimmed together.
+      if (trimmed_objects.size() == 1) stats["objects"].back()["object"] = trimmed_objects[0];
       std::cout << (trimmed_objects.size() == 1 ? "object " + std::to_string(trimmed_objects[0])
                                                 : std::to_string(trimmed_objects.size()) + " volumes")
                 << ": trimmed boundary" << (trimmed_objects.size() == 1 ? "" : " of their union") << ", " << ts.result_triangles
@@ -260,7 +267,9 @@ void run_boundary(const BoundaryArguments& a) {
   render.width = wh[0];
   render.height = wh[1];
   // Everything is prepared before anything is committed: stats, mesh and picture appear together.
-  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, json_text(stats), a.stats, options.progress);
+  write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, json_text(stats), a.stats, options.progress, nullptr,
+                               trimmed_vertex_objects.values.empty() ? std::vector<PlyVertexProperty>{}
+                                                                     : std::vector<PlyVertexProperty>{trimmed_vertex_objects});
   if (!a.html.empty()) {
     InteractivePage page;
     page.title = "boundary of " + a.input->path;

@@ -50,6 +50,7 @@ void run_data(const DataRequest& r) {
     iso_name = r.iso.substr(0, colon);
     iso_value = parse_numbers(r.iso.substr(colon + 1), 1, "--iso")[0];
     if (!r.cut_open.empty()) throw InvalidInput("--cut-open cuts the points' picture; an isosurface is drawn whole", "--cut-open");
+    if (!r.attribute.empty()) throw InvalidInput("--iso names its attribute (NAME:VALUE); --attribute colours the points' picture", "--attribute");
   }
   if (!(r.marker_size >= 0)) throw InvalidInput("expected a size >= 0 (0: from the spacing of the points)", "--marker-size");
   if (r.max_points < 1) throw InvalidInput("expected at least 1", "--max-points");
@@ -86,7 +87,10 @@ void run_data(const DataRequest& r) {
                                      {"mean", data.size() ? values.mean() : 0.0}});
   }
   if (!r.iso.empty()) {
-    if (!grid) throw InvalidInput(r.data + ": isosurfaces need data on a regular grid (images, generated grids); these points are scattered", "--iso");
+    if (!grid)
+      throw InvalidInput(r.data + ": isosurfaces need data on a regular 3-D grid (at least 2 distinct coordinates along each axis, "
+                                  "every combination once: images, generated grids); these points are not",
+                         "--iso");
     const TriangleMesh surface = grid_isosurface(*grid, iso_name, iso_value);
     summary["isosurface"] = {{"attribute", iso_name}, {"value", iso_value}, {"triangles", surface.num_triangles()}};
     RenderOptions render = picture.render;

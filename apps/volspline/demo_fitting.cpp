@@ -31,7 +31,8 @@ namespace {
 
 // `volspline fit` run in the demo folder (its report kept out of the demo's).
 void fit_in(DemoRun& demo, FitArguments a) {
-  a.data = std::filesystem::path(a.data).is_relative() && generated_volume_data(a.data) == std::nullopt ? demo.path(a.data) : a.data;
+  const bool generated = a.data.rfind("marschner-lobb:", 0) == 0 || a.data.rfind("two-material:", 0) == 0;
+  if (!generated && std::filesystem::path(a.data).is_relative()) a.data = demo.path(a.data);
   a.out = demo.path(a.out);
   if (!a.stats.empty()) a.stats = demo.path(a.stats);
   std::ostringstream log;

@@ -164,7 +164,8 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   }();
   TriangleMesh mesh;
   // Per vertex: t and the generator patch (SweptEnvelope::times, patches), after u, v, w in PLY.
-  PlyVertexProperty times{"t", {}, false}, patches{"patch", {}, true};
+  // Patch numbers count within each object: the object says which.
+  PlyVertexProperty times{"t", {}, false}, patches{"patch", {}, true}, objects{"object", {}, true};
   nlohmann::json stats = {{"objects", nlohmann::json::array()}};
   bool open = false, beyond_tolerance = false, adaptation_refused = false, tags_off = false;
   std::size_t solids = 0;
@@ -185,6 +186,7 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
     mesh.append(e.mesh);
     times.values.insert(times.values.end(), e.times.begin(), e.times.end());
     patches.values.insert(patches.values.end(), e.patches.begin(), e.patches.end());
+    objects.values.insert(objects.values.end(), e.mesh.num_vertices(), static_cast<double>(i));
     nlohmann::json s = envelope_stats(e.stats, options.trim);
     s["object"] = i;
     if (options.trim) {
@@ -237,7 +239,7 @@ void run_sweep_envelope(const SweepEnvelopeArguments& a) {
   // (Conkey–Joy's superset shows its sheets inside the swept volume, the trimmed result is a shell).
   const std::optional<TriangleMesh> shown = cut ? std::optional(remove_convex_region(mesh, {*cut})) : std::nullopt;
   write_mesh_picture_and_stats(mesh, a.out, format, a.png, render, stats.dump(2), a.stats, options.progress, shown ? &*shown : nullptr,
-                               {times, patches});
+                               {times, patches, objects});
   InteractivePage page;
   page.title = "envelope of " + a.input->path;
   page.mesh = mesh;
@@ -268,7 +270,7 @@ void add_sweep_envelope_command(CLI::App& app) {
                                  "caps (part 13), face and edge sweeps (part 14), the rank-deficient set (part 15)");
   auto a = std::make_shared<SweepEnvelopeArguments>();
   a->input = add_model_input(cmd);
-  cmd->add_option("-o,--output", a->out, "mesh file: .ply (x y z u v w t patch per vertex, part per face), .obj, .stl or .glb")->required();
+  cmd->add_option("-o,--output", a->out, "mesh file: .ply (x y z u v w t patch object per vertex, part per face), .obj, .stl or .glb")->required();
   cmd->add_option("--tol", a->tol, "tolerance relative to the bounding-box diagonal (default 1e-3)");
   cmd->add_option("--max-cells", a->max_cells, "budget of cells per subdivision (default 2000000)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
   cmd->add_option("--bounds", a->bounds, "bezier (certified Bernstein coefficients, default) or cone (the paper's cone bounds)");

@@ -194,7 +194,8 @@ bool jacobian_vanishes_identically(const BSplineVolume& patch) {
   Eigen::AlignedBox3d box;
   const auto& p = patch.points();
   for (std::size_t i = 0; i + 2 < p.size(); i += 3) box.extend(Eigen::Vector3d(p[i], p[i + 1], p[i + 2]));
-  double weight = 1;
+  // The largest weight (1 for a polynomial patch): scaling all weights alike changes nothing.
+  double weight = patch.weights().empty() ? 1.0 : 0.0;
   for (double w : patch.weights()) weight = std::max(weight, std::abs(w));
   const double size = box.diagonal().norm();
   // J is taken with respect to the patch's own parameters: a domain of length L per direction

@@ -63,7 +63,12 @@ void correct_vertex_tags(const SplineImage<D>& image, const TriangleMesh& mesh, 
       const Eigen::VectorXd y = image.patches()[p.patch].evaluate(p.parameter);
       return (Eigen::Vector3d(y[0], y[1], y[2]) - x).norm();
     };
-    const Preimage tag{static_cast<std::size_t>(patches[v]), parameters[v]};
+    // Interpolated tags can lie a rounding outside the domain (barycentric sums of a bound).
+    Preimage tag{static_cast<std::size_t>(patches[v]), parameters[v]};
+    const auto& patch = image.patches()[tag.patch];
+    for (int d = 0; d < D; ++d)
+      tag.parameter[static_cast<std::size_t>(d)] = std::clamp(tag.parameter[static_cast<std::size_t>(d)], patch.domain_min(d), patch.domain_max(d));
+    parameters[v] = tag.parameter;
     off[v] = offset(tag);
     if (off[v] <= distance) return;
     std::optional<Preimage> found = image.preimage_near(x, tag, distance);

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <mutex>
 
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
@@ -22,7 +23,6 @@
 #include <vtkImageData.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNIFTIImageReader.h>
-#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
@@ -127,18 +127,14 @@ class CapturingOutputWindow : public vtkOutputWindow {
 };
 vtkStandardNewMacro(CapturingOutputWindow)
 
-// Installs a CapturingOutputWindow, and silences VTK's logger on stderr (the macros log there
-// as well), until it goes; then both are as they were.
+// Installs a CapturingOutputWindow until it goes, then the window that was there. The window is
+// VTK's, global to the process: reads that capture are one at a time (a mutex; Python may read
+// on several threads). VTK's logger still prints the warning's line on stderr before our error:
+// its stderr level cannot be read back to restore it, so it is left alone.
 class CapturedOutput {
  public:
-  CapturedOutput() : previous_(vtkOutputWindow::GetInstance()), verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
-    vtkOutputWindow::SetInstance(window_);
-    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  }
-  ~CapturedOutput() {
-    vtkLogger::SetStderrVerbosity(verbosity_);
-    vtkOutputWindow::SetInstance(previous_);
-  }
+  CapturedOutput() : lock_(mutex()), previous_(vtkOutputWindow::GetInstance()) { vtkOutputWindow::SetInstance(window_); }
+  ~CapturedOutput() { vtkOutputWindow::SetInstance(previous_); }
   CapturedOutput(const CapturedOutput&) = delete;
   CapturedOutput& operator=(const CapturedOutput&) = delete;
   /// The first message, without VTK's "Generic Warning: In FILE, line N" line.
@@ -151,8 +147,12 @@ class CapturedOutput {
   }
 
  private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
   vtkSmartPointer<vtkOutputWindow> previous_;
-  vtkLogger::Verbosity verbosity_;
   vtkNew<CapturingOutputWindow> window_;
 };
 

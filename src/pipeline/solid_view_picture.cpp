@@ -47,7 +47,11 @@ void color_by(SolidViewPicture& picture, const SolidViewPictureRequest& request,
   const auto [low, high] = scalar_range(picture.mesh, options);
   for (const double s : options.vertex_scalars)
     picture.mesh_fields.vertex_colors.push_back(colormap_color(options.colormap, (s - low) / (high - low)));
-  picture.mesh_fields.scalar_name = is_ply_property_name(field.name()) ? field.name() : "attribute";
+  // The PLY vertex already has x, y, z, u, v, w: a field of one of those names (--color u) is
+  // written as color_u.
+  const std::string name = field.name();
+  const bool reserved = name == "x" || name == "y" || name == "z" || name == "u" || name == "v" || name == "w";
+  picture.mesh_fields.scalar_name = !is_ply_property_name(name) ? "attribute" : reserved ? "color_" + name : name;
   picture.mesh_fields.vertex_scalars = options.vertex_scalars;
 }
 

@@ -27,14 +27,16 @@ PointMarkers point_markers(const std::vector<Eigen::Vector3d>& points, const std
   }
   PointMarkers out;
   if (points.empty()) return out;
+  const std::size_t stride = (points.size() + options.max_points - 1) / options.max_points;
   double size = options.marker_size;
   if (size == 0) {
+    // The spacing of the points drawn (every stride-th): thinned points are farther apart.
     const double diagonal = box.diagonal().norm();
     const Eigen::Vector3d sides = box.diagonal().cwiseMax(Eigen::Vector3d::Constant(1e-3 * std::max(diagonal, 1e-300)));
-    size = 0.35 * std::cbrt(sides.prod() / static_cast<double>(points.size()));
+    const std::size_t drawn = (points.size() + stride - 1) / stride;
+    size = 0.35 * std::cbrt(sides.prod() / static_cast<double>(drawn));
     if (!(size > 0)) size = 1e-3;  // a single point, or all at one place
   }
-  const std::size_t stride = (points.size() + options.max_points - 1) / options.max_points;
   const Eigen::Vector3d axes[3] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()};
   // The eight faces of the octahedron, outward (counter-clockwise seen from outside).
   static constexpr int kFaces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};

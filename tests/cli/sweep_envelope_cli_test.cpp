@@ -55,16 +55,18 @@ TEST_F(SweepEnvelopeCli, TrimmedTranslatedBoxIsItsClosedHull) {
   std::ifstream ply(path("hull.ply"), std::ios::binary);
   std::string line, header;
   while (std::getline(ply, line) && line != "end_header") header += line + "\n";
-  ASSERT_NE(header.find("property double w\nproperty double t\nproperty int patch\n"), std::string::npos) << header;
+  ASSERT_NE(header.find("property double w\nproperty double t\nproperty int patch\nproperty int object\n"), std::string::npos) << header;
   const Model model = read_model(example("swept-translated-box.json"));
   const auto patches = swept_patches(std::get<SweptSolid>(model.objects.at(0).spline));
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     double values[7];
-    std::int32_t patch = -1;
+    std::int32_t patch = -1, object = -1;
     ply.read(reinterpret_cast<char*>(values), sizeof values);
     ply.read(reinterpret_cast<char*>(&patch), sizeof patch);
+    ply.read(reinterpret_cast<char*>(&object), sizeof object);
     ASSERT_TRUE(ply.good());
     ASSERT_EQ(patch, 0);
+    ASSERT_EQ(object, 0);
     const Eigen::VectorXd x = patches[0].evaluate({values[3], values[4], values[5], values[6]});
     EXPECT_NEAR((Eigen::Vector3d(x[0], x[1], x[2]) - Eigen::Vector3d(values[0], values[1], values[2])).norm(), 0, 1e-9) << v;
   }

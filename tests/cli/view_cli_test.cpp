@@ -95,6 +95,10 @@ TEST(ViewCli, MeshCarriesTheFieldAndSlicesLieInTheirPlanes) {
               dir.path());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_file(glb).substr(0, 4), "glTF");
+  // A field named like a PLY coordinate (--color u) is written as color_u beside u.
+  r = run_cli("view " + kTorus + " -o " + png.string() + " --iso w:2 --color u --mesh " + ply.string() + " --size 200,150", dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(read_file(ply).find("property double u\nproperty double v\nproperty double w\nproperty double color_u\n"), std::string::npos);
 }
 
 TEST(ViewCli, BadInputExitsTwoAndWritesNothing) {

@@ -242,11 +242,18 @@ TEST(SweptSolid, InputsThatAreNot3dAreRefused) {
   EXPECT_EQ(where({folded_cube(), flattened}, path, {}), "generator[1]");
   try {
     make_swept_solid({flattened}, path, {});
+    ADD_FAILURE() << "a flat generator was accepted";
   } catch (const InvalidInput& e) {
     EXPECT_NE(e.message().find("Jacobian vanishes identically"), std::string::npos) << e.message();
   }
   EXPECT_NO_THROW(make_swept_solid({cylinder(1, 2)}, path, {}));
   EXPECT_NO_THROW(make_swept_solid({box(Vector3d::Constant(1e-3))}, path, {}));
+  // Weights scaled alike leave the solid as it is: a cylinder's weights times 1e-3 (w^4 J about
+  // 1e-12 of the unscaled) is still a volume.
+  const BSplineVolume c = cylinder(1, 2);
+  std::vector<double> light = c.weights();
+  for (double& w : light) w *= 1e-3;
+  EXPECT_NO_THROW(make_swept_solid({BSplineVolume({c.knot_vector(0), c.knot_vector(1), c.knot_vector(2)}, 3, c.points(), light)}, path, {}));
 }
 
 TEST(SweptExamples, GeneratorsHaveTheShapesTheyClaim) {

@@ -99,7 +99,8 @@ TEST(SolidViewPicture, AnAttributeFieldIsTheFieldAtTheVertices) {
   EXPECT_EQ(picture.render.scalar_min, coloring.min);
   EXPECT_EQ(picture.render.scalar_max, coloring.max);
   EXPECT_EQ(picture.mesh_fields.vertex_scalars, picture.render.vertex_scalars);
-  EXPECT_EQ(picture.mesh_fields.scalar_name, "x");
+  // "x" names a PLY coordinate already: the field is written as color_x.
+  EXPECT_EQ(picture.mesh_fields.scalar_name, "color_x");
   ASSERT_EQ(picture.mesh_fields.vertex_colors.size(), picture.mesh.positions.size());
   EXPECT_GT(shown_pixels(picture.image), picture.image.rgba.size() / 4 / 20);
 

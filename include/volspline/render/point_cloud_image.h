@@ -21,8 +21,8 @@ struct PointCloudPictureOptions {
   /// Size, camera and colour map. The colour mode is Scalar and the colour bar is titled with
   /// the value's name whatever these say.
   RenderOptions render;
-  /// The octahedra's half-diagonal; 0: 0.35 x the mean spacing of the points (the cube root of
-  /// their box's volume per point, the box flattened sides counting as 1e-3 of its diagonal).
+  /// The octahedra's half-diagonal; 0: 0.35 x the mean spacing of the points drawn (the cube
+  /// root of their box's volume per point drawn, flat sides counting as 1e-3 of its diagonal).
   double marker_size = 0;
   /// Points beyond this are thinned to every k-th (in their order) so that at most this many are
   /// drawn; the picture says how many (point_markers' count).
