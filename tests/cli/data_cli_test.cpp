@@ -68,7 +68,7 @@ TEST(DataCli, BadInputExitsWithTwoAndWritesNothing) {
       {"data marschner-lobb:5 --iso g:0.5 -o " + out, "rho"},
       {"data marschner-lobb:5 --png " + png + " --attribute g", "rho"},
       {"data marschner-lobb:5 --view 1,0,0", "--png"},
-      {"data marschner-lobb:5 --iso rho:0.5 --attribute rho -o " + out, "NAME:VALUE"},
+      {"data marschner-lobb:5 --iso rho:0.5 --attribute rho --png " + png, "NAME:VALUE"},
       {"data marschner-lobb:1", "marschner-lobb:N"},
       {"data marschner-lobb:5 --png " + (dir.path() / "x.jpg").string(), ".png"},
   };
