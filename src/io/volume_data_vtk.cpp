@@ -7,7 +7,6 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
-#include <mutex>
 
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
@@ -24,9 +23,6 @@
 #include <vtkMatrix4x4.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkNew.h>
-#include <vtkObjectFactory.h>
-#include <vtkOutputWindow.h>
-#include <vtkSmartPointer.h>
 #include <vtkPointData.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
@@ -104,57 +100,6 @@ VolumeData read_with(const std::filesystem::path& path, const char* expected) {
   }
   return data;
 }
-
-// VTK's legacy readers report values they could not read ("Error reading ascii data. Possible
-// mismatch of datasize with declaration.") as generic warnings, from functions that belong to no
-// object, so no observer sees them: they go to the output window. This one, installed for the
-// time of a read, keeps the first warning or error instead of printing it.
-class CapturingOutputWindow : public vtkOutputWindow {
- public:
-  static CapturingOutputWindow* New();
-  vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow)
-  void DisplayText(const char*) override {}
-  void DisplayErrorText(const char* text) override { keep(text); }
-  void DisplayWarningText(const char* text) override { keep(text); }
-  void DisplayGenericWarningText(const char* text) override { keep(text); }
-  void DisplayDebugText(const char*) override {}
-  std::string first;
-
- private:
-  void keep(const char* text) {
-    if (first.empty() && text) first = text;
-  }
-};
-vtkStandardNewMacro(CapturingOutputWindow)
-
-// Installs a CapturingOutputWindow until it goes, then the window that was there. The window is
-// VTK's, global to the process: reads that capture are one at a time (a mutex; Python may read
-// on several threads). VTK's logger still prints the warning's line on stderr before our error:
-// its stderr level cannot be read back to restore it, so it is left alone.
-class CapturedOutput {
- public:
-  CapturedOutput() : lock_(mutex()), previous_(vtkOutputWindow::GetInstance()) { vtkOutputWindow::SetInstance(window_); }
-  ~CapturedOutput() { vtkOutputWindow::SetInstance(previous_); }
-  CapturedOutput(const CapturedOutput&) = delete;
-  CapturedOutput& operator=(const CapturedOutput&) = delete;
-  /// The first message, without VTK's "Generic Warning: In FILE, line N" line.
-  std::string first() const {
-    const std::string& m = window_->first;
-    const auto newline = m.find('\n');
-    std::string text = m.rfind("Generic Warning", 0) == 0 && newline != std::string::npos ? m.substr(newline + 1) : m;
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-    return text;
-  }
-
- private:
-  static std::mutex& mutex() {
-    static std::mutex m;
-    return m;
-  }
-  std::lock_guard<std::mutex> lock_;
-  vtkSmartPointer<vtkOutputWindow> previous_;
-  vtkNew<CapturingOutputWindow> window_;
-};
 
 // A legacy file is read by the reader of its DATASET type itself: vtkDataSetReader delegates to
 // one it makes inside, whose errors and warnings no observer of ours would see (a value that is

@@ -366,6 +366,7 @@ TetrahedralMesh read_tetgen(const std::filesystem::path& path) {
 
 using detail::VtkErrors;
 using detail::vtk_message_text;
+using detail::CapturedOutput;
 
 std::string cell_type_name(int type) {
   switch (type) {
@@ -466,7 +467,15 @@ TetrahedralMesh read_vtk(const std::filesystem::path& path) {
                          source);
     }
   }
-  reader->Update();
+  if constexpr (std::is_same_v<Reader, vtkUnstructuredGridReader>) {
+    // The legacy reader reports values it could not read as generic warnings and goes on with
+    // zeros (a missing point read as the origin): caught and refused.
+    const CapturedOutput output;
+    reader->Update();
+    if (errors.first.empty() && !output.first().empty()) errors.first = output.first();
+  } else {
+    reader->Update();
+  }
   if (!errors.first.empty()) throw InvalidInput(vtk_message_text(errors.first), source);
   vtkUnstructuredGrid* grid = reader->GetOutput();
   if (!grid) throw InvalidInput("the VTK reader produced no grid", source);

@@ -191,6 +191,14 @@ TEST(TetrahedralMeshReader, LegacyVtkTetrahedra) {
                  "Error reading");
   EXPECT_THROW(read_tetrahedral_mesh(dir / "missing.vtk"), IoError);
   expect_invalid(write(dir, "cube.stl", "solid\n"), (dir / "cube.stl").string(), "unknown tetrahedral mesh format");
+  // Fewer point coordinates than declared, or one that is not a number: VTK warns and reads
+  // zeros (a point at the origin); refused instead.
+  const std::string short_points = "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n0 0 0 1 0 0 0 1 0 0 0 1\n";
+  expect_invalid(write(dir, "short.vtk", short_points + cells + "CELL_TYPES 2\n10\n10\n"), (dir / "short.vtk").string(), "Error reading");
+  const std::string word = "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n0 0 0 1 0 0 0 1 0 0 0 1 1 one 1\n";
+  expect_invalid(write(dir, "word.vtk", word + cells + "CELL_TYPES 2\n10\n10\n"), (dir / "word.vtk").string(), "one");
+  // The output window is the process's own again after a refused read: a good file still reads.
+  EXPECT_EQ(read_tetrahedral_mesh(dir / "two.vtk").tetrahedra.size(), 2u);
 }
 
 TEST(TetrahedralMeshReader, FireGridFromMayaviIsHexahedral) {
