@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <filesystem>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -164,6 +165,26 @@ TEST_F(ProgressCli, QuietSaysNothingOnStderrEvenWhenTheBarIsForced) {
   EXPECT_EQ(quiet.code, 0);
   EXPECT_EQ(quiet.err, "");
   EXPECT_EQ(test_support::run_cli("-q -v " + blend, tmp.path()).code, 2);  // they exclude each other
+}
+
+// sweep-envelope reports its phases too (the translated box: the superset's faces, the
+// arrangement's cut and classification, the checks), and -q silences them.
+TEST_F(ProgressCli, SweepEnvelopeReportsItsPhases) {
+  const std::string box = (std::filesystem::path(VOLSPLINE_SOURCE_DIR) / "examples" / "swept-translated-box.json").string();
+  const auto r = test_support::run_cli("-v sweep-envelope " + box + " -o " + out("e.ply"), tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* phase : {"reading", "refinement", "classification", "checks", "writing", "total"})
+    EXPECT_TRUE(std::regex_search(r.err, std::regex(std::string("(^|\n)volspline: ") + phase + " [0-9]+\\.[0-9]{3} s\n")))
+        << phase << "\n" << r.err;
+  const ScopedEnv always("VOLSPLINE_PROGRESS", "always");
+  const ScopedEnv delay("VOLSPLINE_PROGRESS_DELAY", "0");
+  const auto bar = test_support::run_cli("sweep-envelope " + box + " -o " + out("e.ply"), tmp.path());
+  ASSERT_EQ(bar.code, 0) << bar.err;
+  EXPECT_NE(bar.err.find("\rvolspline: reading"), std::string::npos) << bar.err;
+  EXPECT_EQ(bar.err.find('\n'), std::string::npos) << bar.err;
+  const auto quiet = test_support::run_cli("-q sweep-envelope " + box + " -o " + out("e.ply"), tmp.path());
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
 }
 
 TEST_F(ProgressCli, ForcedBarRewritesOneLineAndEndsErased) {
