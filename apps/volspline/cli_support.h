@@ -55,6 +55,9 @@ void write_mesh_picture_and_stats(const TriangleMesh& mesh, const std::string& o
                                   const RenderOptions& options, const std::string& stats_text, const std::string& stats_path,
                                   Progress* progress, const TriangleMesh* shown = nullptr,
                                   const std::vector<PlyVertexProperty>& properties = {});
+/// The help of a DATA argument (`fit`, `data`): the volume data formats and generated names.
+inline constexpr const char* kVolumeDataHelp =
+    "volume data: .csv (header x,y,z,...), .ply, .vtu, .vti, .vtk, .inr, .nii, .nii.gz, or marschner-lobb:N / two-material:N[:TILT]";
 /// JSON text for output (stdout, --stats): strings that are not valid UTF-8 (an object name read
 /// from an IRIT file) have their invalid bytes replaced by U+FFFD instead of failing.
 std::string json_text(const nlohmann::json& value, int indent = 2);

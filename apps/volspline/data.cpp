@@ -134,9 +134,7 @@ void add_data_command(CLI::App& app) {
   auto r = std::make_shared<DataRequest>();
   auto* cmd = app.add_subcommand("data", "What volume data holds (points, box, grid, attributes and their ranges) and, with --png, a "
                                          "picture of its points coloured by an attribute");
-  cmd->add_option("DATA", r->data,
-                  "volume data: .csv (header x,y,z,...), .ply, .vtu, .vti, .vtk, .inr, .nii, or marschner-lobb:N / two-material:N[:TILT]")
-      ->required();
+  cmd->add_option("DATA", r->data, kVolumeDataHelp)->required();
   cmd->add_flag("--json", r->json, "print the summary as JSON");
   cmd->add_option("--png", r->png, "the points as small octahedra coloured by an attribute (.png)");
   cmd->add_option("--attribute", r->attribute, "the attribute the points are coloured by (default: the first)");

@@ -325,9 +325,7 @@ void add_fit_command(CLI::App& app) {
   auto r = std::make_shared<FitArguments>();
   auto* cmd = app.add_subcommand("fit", "Fit scattered volume data (points with attributes) with a trivariate simplex spline "
                                         "(Hua-He-Qin 5: domain from the data, least squares, adaptive refinement)");
-  cmd->add_option("DATA", r->data,
-                  "volume data: .csv (header x,y,z,...), .ply, .vtu, .vti, .vtk, .inr, .nii, or marschner-lobb:N / two-material:N[:TILT]")
-      ->required();
+  cmd->add_option("DATA", r->data, kVolumeDataHelp)->required();
   cmd->add_option("-o,--output", r->out, "output model file (.json)")->required();
   cmd->add_option("--degree", r->degree, "the degree n, 1 to 5 (default 2)");
   cmd->add_option("--attributes", r->attributes, "the attributes to fit, comma-separated (default: all)");

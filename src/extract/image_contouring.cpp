@@ -35,6 +35,7 @@
 
 #include "volspline/core/elapsed_time.h"
 #include "volspline/core/error.h"
+#include "volspline/mesh/marching_tetrahedra.h"
 #include "volspline/core/exact_hash.h"
 #include "volspline/extract/sheet_refinement.h"
 #include "volspline/mesh/mesh_checks.h"
@@ -116,11 +117,6 @@ struct ContourPolygon {
   std::array<std::uint64_t, 4> tetrahedron{};
 };
 
-// The six Kuhn tetrahedra of the unit cube: 000 -> e_p0 -> e_p0 + e_p1 -> 111 for each
-// permutation p of the axes. Corner c of the cube is bit 0: x, bit 1: y, bit 2: z.
-constexpr std::array<std::array<int, 4>, 6> kContourKuhnTetrahedra{{
-    {0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7},
-}};
 
 }  // namespace
 
@@ -544,7 +540,7 @@ TrimmedBoundary contour_image_boundary(const TriangleMesh& superset, const std::
   };
   // The six Kuhn tetrahedra of a cube `size` lattice steps wide.
   auto march_cube = [&](std::uint64_t low, std::int64_t size, std::uint64_t cell, std::vector<ContourPolygon>& out) {
-    for (const auto& tet : kContourKuhnTetrahedra) {
+    for (const auto& tet : kKuhnTetrahedra) {
       std::array<std::uint64_t, 4> keys{};
       for (int c = 0; c < 4; ++c) keys[static_cast<std::size_t>(c)] = corner_key(low, tet[static_cast<std::size_t>(c)], size);
       march(keys, cell, out);

@@ -242,7 +242,6 @@ SolidBoundary uniform_zero_surface(const BSplineVolume& volume, const BoundaryOp
   MarchingTetrahedra mt;
   // Six tetrahedra around the main diagonal of each cube (Kuhn): neighbouring cubes agree on
   // the diagonals of their common faces, so the mesh is conforming.
-  static constexpr int kKuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
   for (int k = 0; k < n; ++k) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
@@ -254,7 +253,7 @@ SolidBoundary uniform_zero_surface(const BSplineVolume& volume, const BoundaryOp
         }
         if (!(negative && positive)) continue;
         ++out.stats.cells_kept;
-        for (const auto& tet : kKuhn) {
+        for (const auto& tet : kKuhnTetrahedra) {
           std::array<MarchingTetrahedra::Sample, 4> s;
           for (std::size_t q = 0; q < 4; ++q) {
             const std::size_t idx = c[static_cast<std::size_t>(tet[q])];

@@ -29,9 +29,6 @@ TriangleMesh grid_isosurface(const RegularGridData& grid, const std::string& att
                                                       grid.axes[2][static_cast<std::size_t>(k)]),
                                       grid.values(id(i, j, k), column) - value};
   };
-  // The six tetrahedra of a cube around its diagonal from corner 0 to corner 7 (corner bits x, y,
-  // z): neighbouring cubes split their shared faces alike, so the surface has no cracks.
-  static constexpr int kKuhn[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
   MarchingTetrahedra marching;
   for (std::int64_t k = 0; k + 1 < nz; ++k)
     for (std::int64_t j = 0; j + 1 < ny; ++j)
@@ -43,7 +40,7 @@ TriangleMesh grid_isosurface(const RegularGridData& grid, const std::string& att
           positive += corner[static_cast<std::size_t>(c)].value >= 0;
         }
         if (positive == 0 || positive == 8) continue;
-        for (const auto& t : kKuhn)
+        for (const auto& t : kKuhnTetrahedra)
           marching.add_tetrahedron_oriented_by_corners({corner[static_cast<std::size_t>(t[0])], corner[static_cast<std::size_t>(t[1])],
                                                         corner[static_cast<std::size_t>(t[2])], corner[static_cast<std::size_t>(t[3])]});
       }

@@ -15,6 +15,14 @@
 
 namespace volspline {
 
+/// The six Kuhn tetrahedra of the unit cube: 000 -> e_p0 -> e_p0 + e_p1 -> 111 for each
+/// permutation p of the axes (corner c of the cube: bit 0 x, bit 1 y, bit 2 z). All share the
+/// diagonal 0-7, so cubes of a grid split their shared faces alike and marching tetrahedra on
+/// them leaves no cracks.
+inline constexpr std::array<std::array<int, 4>, 6> kKuhnTetrahedra{{
+    {0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7},
+}};
+
 class MarchingTetrahedra {
  public:
   struct Sample {
